@@ -1,0 +1,38 @@
+// Floating-point error bounds (Higham's gamma_n) and one-ulp steps, as used by
+// pbrt-v4 for conservative intersection and ray-origin offsets.
+#pragma once
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace kappa {
+
+/// Unit roundoff of float: half the machine epsilon.
+inline constexpr float kFloatUnitRoundoff = std::numeric_limits<float>::epsilon() * 0.5f;
+
+/// Bound on the relative error of n successive float operations.
+constexpr float gamma(int n) {
+  return (float(n) * kFloatUnitRoundoff) / (1.0f - float(n) * kFloatUnitRoundoff);
+}
+
+/// The next float towards +infinity (identity on +inf and NaN).
+inline float next_float_up(float v) {
+  if (std::isinf(v) && v > 0.0f) return v;
+  if (v == -0.0f) v = 0.0f;
+  std::uint32_t bits = std::bit_cast<std::uint32_t>(v);
+  bits = (v >= 0.0f) ? bits + 1 : bits - 1;
+  return std::bit_cast<float>(bits);
+}
+
+/// The next float towards -infinity.
+inline float next_float_down(float v) {
+  if (std::isinf(v) && v < 0.0f) return v;
+  if (v == 0.0f) v = -0.0f;
+  std::uint32_t bits = std::bit_cast<std::uint32_t>(v);
+  bits = (v > 0.0f) ? bits - 1 : bits + 1;
+  return std::bit_cast<float>(bits);
+}
+
+}  // namespace kappa

@@ -1,0 +1,23 @@
+// The paper's baseline: test every triangle. Also the correctness oracle every
+// other accelerator is compared against.
+#pragma once
+
+#include <span>
+
+#include "accel.h"
+
+namespace kappa {
+
+class NaiveAccelerator final : public Accelerator {
+ public:
+  explicit NaiveAccelerator(std::span<const Triangle> triangles) : m_triangles(triangles) {}
+
+  std::optional<Hit> closest_hit(const Ray& ray) const override;
+  bool any_hit(const Ray& ray) const override;
+  std::string_view name() const override { return "naive"; }
+
+ private:
+  std::span<const Triangle> m_triangles;
+};
+
+}  // namespace kappa

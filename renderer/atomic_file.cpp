@@ -1,0 +1,88 @@
+#include "atomic_file.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <mutex>
+
+#include "error.h"
+
+namespace kappa {
+namespace {
+
+// The signal handler may only call async-signal-safe functions, so the paths
+// to remove live in fixed buffers, published through atomic flags.
+constexpr int kSlots = 8;
+constexpr std::size_t kPathMax = 4096;
+std::array<char[kPathMax], kSlots> g_paths;
+std::array<std::atomic<bool>, kSlots> g_claimed{};  ///< slot taken
+std::array<std::atomic<bool>, kSlots> g_ready{};    ///< path written
+std::once_flag g_handlers_installed;
+
+extern "C" void remove_temporaries_and_exit(int sig) {
+  for (int i = 0; i < kSlots; ++i)
+    if (g_ready[i].load()) ::unlink(g_paths[i]);
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+}
+
+void install_handlers() {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction sa {};
+    sa.sa_handler = remove_temporaries_and_exit;
+    sigemptyset(&sa.sa_mask);
+    ::sigaction(sig, &sa, nullptr);
+  }
+}
+
+int claim_slot(const std::string& path) {
+  if (path.size() >= kPathMax) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    if (g_claimed[i].exchange(true)) continue;
+    std::strcpy(g_paths[i], path.c_str());
+    g_ready[i].store(true);  // only now may the handler read the path
+    return i;
+  }
+  return -1;
+}
+
+void release_slot(int i) {
+  g_ready[i].store(false);
+  g_claimed[i].store(false);
+}
+
+}  // namespace
+
+AtomicOutput::AtomicOutput(const std::filesystem::path& target) : m_target(target) {
+  std::call_once(g_handlers_installed, install_handlers);
+  std::error_code ec;
+  if (std::filesystem::is_directory(target, ec)) fail(target, 0, "cannot write: it is a directory");
+  const std::filesystem::path dir = target.parent_path().empty() ? "." : target.parent_path();
+  if (!std::filesystem::is_directory(dir, ec)) fail(target, 0, "cannot write: folder '" + dir.string() + "' does not exist");
+  // Same folder as the target, so the final rename cannot cross file systems;
+  // the .exr ending keeps format detection by extension working.
+  m_temp = dir / ("." + target.filename().string() + ".kappa-" + std::to_string(::getpid()) + ".tmp" +
+                  target.extension().string());
+  const int fd = ::open(m_temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) fail(target, 0, std::string("cannot write: ") + std::strerror(errno));
+  ::close(fd);
+  m_slot = claim_slot(m_temp.string());
+}
+
+AtomicOutput::~AtomicOutput() {
+  if (!m_committed) ::unlink(m_temp.c_str());
+  if (m_slot >= 0) release_slot(m_slot);
+}
+
+void AtomicOutput::commit() {
+  if (std::rename(m_temp.c_str(), m_target.c_str()) != 0)
+    fail(m_target, 0, std::string("cannot replace: ") + std::strerror(errno));
+  m_committed = true;
+}
+
+}  // namespace kappa

@@ -1,0 +1,84 @@
+#include "cli.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <new>
+
+#include "accel/accel.h"
+#include "error.h"
+#include "options.h"
+#include "render_command.h"
+#include "version.h"
+
+namespace kappa {
+namespace {
+
+void add_render_options(CLI::App& render, RenderOptions& o) {
+  render.add_option("scene", o.scene, "scene.json or .obj file")->required();
+  render.add_option("--accel", o.accel, "accelerator")->check(CLI::IsMember(accelerator_names()))->capture_default_str();
+  render.add_option("--spp", o.spp, "samples per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  render.add_option("--max-depth", o.max_depth, "bounces after the camera ray (1 = direct lighting)")
+      ->check(CLI::Range(0, 1 << 20))
+      ->capture_default_str();
+  render.add_option("--rr-depth", o.rr_depth, "Russian roulette from this bounce on")
+      ->check(CLI::Range(0, 1 << 20))
+      ->capture_default_str();
+  render.add_flag("--no-rr", o.no_rr, "disable Russian roulette");
+  render.add_option("--seed", o.seed, "random seed")->capture_default_str();
+  render.add_option("--threads", o.threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+  render.add_option("--width", o.width, "film width (overrides the scene)")->check(CLI::Range(1, 1 << 15));
+  render.add_option("--height", o.height, "film height (overrides the scene)")->check(CLI::Range(1, 1 << 15));
+  render.add_option("--out", o.out, "output EXR (default out/<scene name>.exr)");
+  render.add_option("--aov", o.aov, "extra EXR channels: comma list of albedo, normal, depth");
+  render.add_flag("-q,--quiet", o.quiet, "no progress bar and no summary line");
+}
+
+/// CLI11 messages can span lines; the contract is one line on stderr.
+std::string one_line(std::string s) {
+  for (char& c : s)
+    if (c == '\n') c = ' ';
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+  CLI::App app{"Kappa: a path tracer that measures the cost of ray casting", "kappa"};
+  app.set_version_flag("--version", std::string("kappa ") + version_string());
+  app.require_subcommand(1);
+  RenderOptions render_options;
+  CLI::App* render = app.add_subcommand("render", "render a scene to EXR");
+  add_render_options(*render, render_options);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // CLI11's own codes are 105-109; Kappa's contract for bad options is 2.
+    std::fprintf(stderr, "kappa: error: %s (see kappa --help)\n", one_line(e.what()).c_str());
+    return 2;
+  }
+
+  try {
+    if (render->parsed()) return run_render(render_options);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "kappa: error: %s\n", one_line(e.what()).c_str());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "kappa: error: out of memory\n");
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "kappa: internal error: %s\n", one_line(e.what()).c_str());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace kappa

@@ -1,0 +1,26 @@
+// Errors in user input: a one-line message naming the file (and line), which
+// the command line prints and turns into exit code 2.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace kappa {
+
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// "file: message" or "file:line: message" (line 0 means the whole file).
+std::string located(const std::filesystem::path& file, std::size_t line, const std::string& message);
+
+[[noreturn]] void fail(const std::filesystem::path& file, std::size_t line, const std::string& message);
+
+/// Warnings gathered while loading, printed by the caller (and inspected by tests).
+using Warnings = std::vector<std::string>;
+
+}  // namespace kappa

@@ -1,0 +1,224 @@
+#include "integrator.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include "camera.h"
+#include "interaction.h"
+#include "lights.h"
+#include "sampling.h"
+
+namespace kappa {
+namespace {
+
+constexpr int kTileSize = 16;
+
+/// What a camera sample records besides radiance.
+struct FirstHit {
+  Vec3f albedo{0, 0, 0};
+  Vec3f normal{0, 0, 0};
+  float depth = INFINITY;
+};
+
+class PathTracer {
+ public:
+  PathTracer(const Scene& scene, const Accelerator& accel, const RenderSettings& settings)
+      : m_scene(scene), m_accel(accel), m_lights(scene), m_settings(settings) {}
+
+  /// Radiance arriving along `ray`; counts every accelerator query in `rays`.
+  Vec3f radiance(Ray ray, Rng& rng, FirstHit& first, std::uint64_t& rays) const {
+    Vec3f L{0, 0, 0};
+    Vec3f beta{1, 1, 1};
+    float prev_bsdf_pdf = 0;  // solid-angle pdf of the direction that led here
+    Vec3f prev_normal;        // oriented normal at the previous vertex
+
+    for (int depth = 0;; ++depth) {
+      ++rays;
+      const std::optional<Hit> hit = m_accel.closest_hit(ray);
+      if (!hit) {
+        if (depth == 0) {
+          L += beta * m_scene.environment;
+        } else {
+          const float light_pdf =
+              m_lights.pmf_environment() * cosine_hemisphere_pdf(dot(prev_normal, ray.d));
+          L += beta * m_scene.environment * power_heuristic(prev_bsdf_pdf, light_pdf);
+        }
+        break;
+      }
+      const Triangle& tri = m_scene.triangles[hit->triangle];
+      const Material& mat = m_scene.materials[m_scene.material_of[hit->triangle]];
+      const SurfacePoint sp = surface_point(tri, hit->b0, hit->b1, hit->b2);
+      const Vec3f wo = -ray.d;
+      const float cos_o = dot(sp.n, wo);
+      const Vec3f n = cos_o >= 0.0f ? sp.n : -sp.n;  // reflect on the side the ray came from
+
+      if (depth == 0) first = FirstHit{mat.albedo, n, hit->t};
+
+      // Emission: one-sided, towards the geometric normal.
+      if (mat.emissive() && cos_o > 0.0f) {
+        if (depth == 0) {
+          L += beta * mat.emission;
+        } else {
+          const float dist2 = hit->t * hit->t;
+          const float light_pdf = m_lights.pmf_of_triangle(hit->triangle) * dist2 /
+                                  (cos_o * m_lights.area_of_triangle(hit->triangle));
+          L += beta * mat.emission * power_heuristic(prev_bsdf_pdf, light_pdf);
+        }
+      }
+      if (depth >= m_settings.max_depth) break;
+      if (mat.albedo == Vec3f{0, 0, 0}) break;  // black: nothing more to gather
+
+      const Vec3f f = mat.albedo * std::numbers::inv_pi_v<float>;  // Lambertian BSDF
+      if (!m_lights.empty()) L += beta * direct_light(sp, n, f, rng, rays);
+
+      // Continue the path by sampling the BSDF (cosine-weighted hemisphere).
+      const Vec3f local = sample_cosine_hemisphere(rng.uniform(), rng.uniform());
+      const float pdf = cosine_hemisphere_pdf(local.z);
+      if (!(pdf > 0.0f)) break;
+      const Vec3f wi = Frame(n).to_world(local);
+      beta *= mat.albedo;  // f * cos / pdf
+      prev_bsdf_pdf = pdf;
+      prev_normal = n;
+      ray = Ray{offset_ray_origin(sp, wi), wi};
+
+      if (m_settings.rr_depth >= 0 && depth + 1 >= m_settings.rr_depth) {
+        const float q = std::max(0.0f, 1.0f - max_component(beta));
+        if (rng.uniform() < q) break;
+        beta /= 1.0f - q;
+      }
+    }
+    return L;
+  }
+
+ private:
+  /// One light sample with its MIS weight against BSDF sampling.
+  Vec3f direct_light(const SurfacePoint& sp, const Vec3f& n, const Vec3f& f, Rng& rng, std::uint64_t& rays) const {
+    const std::size_t light = m_lights.choose(rng.uniform());
+    const float u1 = rng.uniform(), u2 = rng.uniform();
+    if (light == m_lights.environment_index()) {
+      // Cosine-weighted about the oriented normal: directions below the
+      // surface would contribute nothing.
+      const Vec3f local = sample_cosine_hemisphere(u1, u2);
+      const float dir_pdf = cosine_hemisphere_pdf(local.z);
+      if (!(dir_pdf > 0.0f)) return {};
+      const Vec3f wi = Frame(n).to_world(local);
+      const float light_pdf = m_lights.pmf_environment() * dir_pdf;
+      ++rays;
+      if (m_accel.any_hit(Ray{offset_ray_origin(sp, wi), wi})) return {};
+      const float weight = power_heuristic(light_pdf, dir_pdf);
+      return f * m_scene.environment * (local.z * weight / light_pdf);
+    }
+
+    const TriangleId id = m_lights.triangle(light);
+    const Triangle& tri = m_scene.triangles[id];
+    float b0, b1, b2;
+    sample_triangle(u1, u2, b0, b1, b2);
+    const SurfacePoint lp = surface_point(tri, b0, b1, b2);
+    const Vec3f to_light = lp.p - sp.p;
+    const float dist2 = dot(to_light, to_light);
+    if (!(dist2 > 0.0f)) return {};
+    const Vec3f wi = to_light / std::sqrt(dist2);
+    const float cos_s = dot(n, wi);
+    const float cos_l = -dot(lp.n, wi);
+    if (cos_s <= 0.0f || cos_l <= 0.0f) return {};
+    const float light_pdf = m_lights.pmf(light) * dist2 / (cos_l * m_lights.area(light));
+    if (!(light_pdf > 0.0f) || !std::isfinite(light_pdf)) return {};
+
+    const Vec3f from = offset_ray_origin(sp, wi);
+    const Vec3f to = offset_ray_origin(lp, -wi);
+    const Vec3f d = to - from;
+    const float len = length(d);
+    if (!(len > 0.0f)) return {};
+    ++rays;
+    if (m_accel.any_hit(Ray{from, d / len, 0.0f, len * (1.0f - kShadowEpsilon)})) return {};
+    const Vec3f Le = m_scene.materials[m_scene.material_of[id]].emission;
+    const float weight = power_heuristic(light_pdf, cosine_hemisphere_pdf(cos_s));
+    return f * Le * (cos_s * weight / light_pdf);
+  }
+
+  const Scene& m_scene;
+  const Accelerator& m_accel;
+  Lights m_lights;
+  const RenderSettings& m_settings;
+};
+
+bool finite(const Vec3f& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+}  // namespace
+
+RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSettings& settings, Film& film,
+                    const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const Camera camera(scene.camera, film.width, film.height);
+  const PathTracer tracer(scene, accel, settings);
+  const int tiles_x = (film.width + kTileSize - 1) / kTileSize;
+  const int tiles_y = (film.height + kTileSize - 1) / kTileSize;
+  const std::size_t tile_count = std::size_t(tiles_x) * std::size_t(tiles_y);
+
+  std::optional<tbb::global_control> limit;
+  if (settings.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(settings.threads));
+
+  struct Counters {
+    std::uint64_t rays = 0, rejected = 0;
+  };
+  tbb::enumerable_thread_specific<Counters> counters;
+  std::atomic<std::size_t> tiles_done{0};
+  const double inv_spp = 1.0 / double(settings.spp);
+
+  tbb::parallel_for(std::size_t(0), tile_count, [&](std::size_t tile) {
+    Counters& local = counters.local();
+    const int x0 = int(tile % std::size_t(tiles_x)) * kTileSize;
+    const int y0 = int(tile / std::size_t(tiles_x)) * kTileSize;
+    for (int y = y0; y < std::min(y0 + kTileSize, film.height); ++y) {
+      for (int x = x0; x < std::min(x0 + kTileSize, film.width); ++x) {
+        const std::size_t pixel = std::size_t(y) * std::size_t(film.width) + std::size_t(x);
+        double sum[3] = {0, 0, 0}, albedo[3] = {0, 0, 0}, normal[3] = {0, 0, 0}, depth = 0;
+        int hits = 0;
+        for (int s = 0; s < settings.spp; ++s) {
+          Rng rng(settings.seed, pixel, std::uint64_t(s));
+          const float fx = rng.uniform(), fy = rng.uniform();
+          FirstHit first;
+          Vec3f L = tracer.radiance(camera.generate_ray(float(x) + fx, float(y) + fy), rng, first, local.rays);
+          if (!finite(L)) {
+            ++local.rejected;
+            L = {0, 0, 0};
+          }
+          sum[0] += L.x, sum[1] += L.y, sum[2] += L.z;
+          albedo[0] += first.albedo.x, albedo[1] += first.albedo.y, albedo[2] += first.albedo.z;
+          normal[0] += first.normal.x, normal[1] += first.normal.y, normal[2] += first.normal.z;
+          if (std::isfinite(first.depth)) {
+            depth += first.depth;
+            ++hits;
+          }
+        }
+        for (int c = 0; c < 3; ++c) film.rgb[3 * pixel + std::size_t(c)] = float(sum[c] * inv_spp);
+        if (!film.albedo.empty())
+          for (int c = 0; c < 3; ++c) film.albedo[3 * pixel + std::size_t(c)] = float(albedo[c] * inv_spp);
+        if (!film.normal.empty()) {
+          const double len = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+          for (int c = 0; c < 3; ++c)
+            film.normal[3 * pixel + std::size_t(c)] = len > 0 ? float(normal[c] / len) : 0.0f;
+        }
+        if (!film.depth.empty()) film.depth[pixel] = hits > 0 ? float(depth / hits) : INFINITY;
+      }
+    }
+    const std::size_t done = tiles_done.fetch_add(1, std::memory_order_relaxed) + 1;
+    if (progress) progress(done, tile_count);
+  });
+
+  RenderResult result;
+  counters.combine_each([&](const Counters& c) {
+    result.rays += c.rays;
+    result.rejected_samples += c.rejected;
+  });
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace kappa

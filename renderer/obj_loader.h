@@ -1,0 +1,23 @@
+// OBJ + MTL loading through tinyobjloader, behind a line-numbered pre-scan that
+// refuses (InputError naming file:line) or repairs with a warning what
+// tinyobjloader would otherwise accept silently. The policy per case is the
+// table in README.md ("Bad input").
+#pragma once
+
+#include <filesystem>
+
+#include "error.h"
+#include "scene.h"
+
+namespace kappa {
+
+/// Largest coordinate magnitude accepted. Beyond it float products in the
+/// intersection test and squared distances in light sampling lose all
+/// precision or overflow, so such files are refused rather than half-rendered.
+inline constexpr double kMaxCoordinate = 1e15;
+
+/// Appends the triangles and materials of `obj` to `scene`. Zero-area triangles
+/// are dropped (with a warning). Throws InputError on refused input.
+void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings);
+
+}  // namespace kappa

@@ -1,0 +1,117 @@
+#include "render_command.h"
+
+#include <tbb/info.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+
+#include "accel/accel.h"
+#include "atomic_file.h"
+#include "error.h"
+#include "exr_output.h"
+#include "integrator.h"
+#include "progress.h"
+#include "scene_loader.h"
+#include "version.h"
+
+namespace kappa {
+namespace {
+
+AovSelection parse_aovs(const std::string& list) {
+  AovSelection aov;
+  std::stringstream ss(list);
+  std::string name;
+  while (std::getline(ss, name, ',')) {
+    if (name == "albedo") aov.albedo = true;
+    else if (name == "normal") aov.normal = true;
+    else if (name == "depth") aov.depth = true;
+    else if (!name.empty()) throw InputError("--aov: unknown AOV '" + name + "' (expected albedo, normal, depth)");
+  }
+  return aov;
+}
+
+std::filesystem::path output_path(const RenderOptions& options, const Scene& scene) {
+  if (!options.out.empty()) return options.out;
+  const std::filesystem::path dir = "out";
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError("out: cannot create the output folder: " + ec.message());
+  return dir / (scene.name + ".exr");
+}
+
+}  // namespace
+
+std::string RenderOptions::to_string() const {
+  std::ostringstream s;
+  s << "scene=" << scene << " accel=" << accel << " spp=" << spp << " max_depth=" << max_depth
+    << " rr_depth=" << (no_rr ? -1 : rr_depth) << " seed=" << seed << " threads=" << threads << " width=" << width
+    << " height=" << height << " out=" << out << " aov=" << aov;
+  return s.str();
+}
+
+int run_render(const RenderOptions& options) {
+  const AovSelection aov = parse_aovs(options.aov);
+  if (!options.out.empty() && std::filesystem::path(options.out).extension() != ".exr")
+    throw InputError("--out: '" + options.out + "' must end in .exr");
+
+  Warnings warnings;
+  Scene scene = load_scene(options.scene, warnings);
+  for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", w.c_str());
+  if (options.width > 0) scene.width = options.width;
+  if (options.height > 0) scene.height = options.height;
+
+  // Claim the output before rendering: an unwritable path fails now, not
+  // after an hour of work.
+  AtomicOutput output(output_path(options, scene));
+
+  const auto build_start = std::chrono::steady_clock::now();
+  const std::unique_ptr<Accelerator> accel = make_accelerator(options.accel, scene.triangles);
+  const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
+
+  RenderSettings settings;
+  settings.spp = options.spp;
+  settings.max_depth = options.max_depth;
+  settings.rr_depth = options.no_rr ? -1 : options.rr_depth;
+  settings.seed = options.seed;
+  settings.threads = options.threads;
+  settings.aov = aov;
+  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+
+  Film film(scene.width, scene.height, aov);
+  ProgressBar bar(!options.quiet && ::isatty(STDERR_FILENO));
+  const RenderResult result =
+      render(scene, *accel, settings, film, [&bar](std::size_t done, std::size_t total) { bar.update(done, total); });
+  bar.finish();
+  if (result.rejected_samples > 0)
+    std::fprintf(stderr, "kappa: warning: %llu samples had non-finite radiance and were replaced by 0\n",
+                 static_cast<unsigned long long>(result.rejected_samples));
+
+  const Metadata metadata = {
+      {"Software", std::string("Kappa ") + version_string()},
+      {"kappa:version", std::string(version_string())},
+      {"kappa:scene", scene.source.string()},
+      {"kappa:spp", options.spp},
+      {"kappa:seed", std::to_string(options.seed)},
+      {"kappa:accel", std::string(accel->name())},
+      {"kappa:max_depth", options.max_depth},
+      {"kappa:rr_depth", settings.rr_depth},
+      {"kappa:threads", threads},
+      {"kappa:render_time_s", float(result.seconds)},
+      {"kappa:accel_build_s", float(build_s)},
+      {"kappa:rays", std::to_string(result.rays)},
+  };
+  write_exr(output.temp_path(), film, metadata);
+  output.commit();
+
+  if (!options.quiet) {
+    std::fprintf(stderr, "kappa: %s %dx%d, %d spp, %s, %d threads: %.2f s, %llu rays, %.2f Mrays/s -> %s\n",
+                 scene.name.c_str(), scene.width, scene.height, options.spp, std::string(accel->name()).c_str(), threads,
+                 result.seconds, static_cast<unsigned long long>(result.rays),
+                 result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0, output.target().c_str());
+  }
+  return 0;
+}
+
+}  // namespace kappa

@@ -1,0 +1,106 @@
+// Random numbers and the sample warps used by the path tracer.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+
+#include "accel/vec3.h"
+
+namespace kappa {
+
+/// SplitMix64 finalizer: a bijective 64-bit mix, used to derive stream keys.
+constexpr std::uint64_t mix64(std::uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+/// PCG32 (O'Neill 2014): small state, good statistics, cheap to seed per sample.
+class Rng {
+ public:
+  /// The stream of one camera sample depends only on (seed, pixel, sample
+  /// index), never on which thread renders it or in what order.
+  Rng(std::uint64_t seed, std::uint64_t pixel, std::uint64_t sample) {
+    const std::uint64_t key = mix64(mix64(seed ^ 0x9E3779B97F4A7C15ull) ^ pixel);
+    m_inc = (mix64(key ^ (sample * 0xD1B54A32D192ED03ull)) << 1u) | 1u;
+    m_state = 0;
+    next_u32();
+    m_state += mix64(key + sample);
+    next_u32();
+  }
+
+  std::uint32_t next_u32() {
+    const std::uint64_t old = m_state;
+    m_state = old * 6364136223846793005ull + m_inc;
+    const auto xorshifted = static_cast<std::uint32_t>(((old >> 18u) ^ old) >> 27u);
+    const auto rot = static_cast<std::uint32_t>(old >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
+  }
+
+  /// Uniform in [0, 1), 24 random bits: never returns 1.
+  float uniform() { return float(next_u32() >> 8) * 0x1p-24f; }
+
+ private:
+  std::uint64_t m_state = 0;
+  std::uint64_t m_inc = 1;
+};
+
+/// Orthonormal basis around a unit vector n (Duff et al. 2017, branchless).
+struct Frame {
+  Vec3f s, t, n;
+
+  explicit Frame(const Vec3f& normal) : n(normal) {
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z);
+    const float b = n.x * n.y * a;
+    s = {1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x};
+    t = {b, sign + n.y * n.y * a, -n.y};
+  }
+  Vec3f to_world(const Vec3f& v) const { return s * v.x + t * v.y + n * v.z; }
+};
+
+/// Cosine-weighted direction about +z (Malley's method on a concentric disk).
+inline Vec3f sample_cosine_hemisphere(float u1, float u2) {
+  const float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
+  float r = 0, phi = 0;
+  if (a != 0.0f || b != 0.0f) {
+    constexpr float kPi4 = std::numbers::pi_v<float> / 4.0f;
+    if (std::abs(a) > std::abs(b)) {
+      r = a;
+      phi = kPi4 * (b / a);
+    } else {
+      r = b;
+      phi = 2.0f * kPi4 - kPi4 * (a / b);
+    }
+  }
+  const float x = r * std::cos(phi), y = r * std::sin(phi);
+  return {x, y, std::sqrt(std::max(0.0f, 1.0f - x * x - y * y))};
+}
+
+inline float cosine_hemisphere_pdf(float cos_theta) {
+  return cos_theta > 0.0f ? cos_theta * std::numbers::inv_pi_v<float> : 0.0f;
+}
+
+/// Uniform barycentrics on a triangle (Heitz 2019, low-distortion square to triangle map).
+inline void sample_triangle(float u1, float u2, float& b0, float& b1, float& b2) {
+  if (u2 > u1) {
+    b0 = u1 * 0.5f;
+    b1 = u2 - b0;
+  } else {
+    b1 = u2 * 0.5f;
+    b0 = u1 - b1;
+  }
+  b2 = 1.0f - b0 - b1;
+}
+
+/// Power heuristic with beta = 2 (Veach 1997).
+inline float power_heuristic(float pdf_a, float pdf_b) {
+  const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
+  if (std::isinf(a)) return 1.0f;
+  return a + b > 0.0f ? a / (a + b) : 0.0f;
+}
+
+inline float luminance(const Vec3f& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+}  // namespace kappa

@@ -1,0 +1,113 @@
+#include "test_util.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+namespace kappa::test {
+
+TempDir::TempDir() {
+  static std::mt19937_64 rng(std::random_device{}());
+  m_path = std::filesystem::temp_directory_path() /
+           ("kappa-test-" + std::to_string(::getpid()) + "-" + std::to_string(rng()));
+  std::filesystem::create_directories(m_path);
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(m_path, ec);
+}
+
+std::vector<std::string> RunResult::err_lines() const {
+  std::vector<std::string> lines;
+  std::istringstream in(std_err);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+namespace {
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) {
+    if (c == '\'') q += "'\\''";
+    else q += c;
+  }
+  return q + "'";
+}
+}  // namespace
+
+RunResult run_kappa(const std::vector<std::string>& args) {
+  TempDir tmp;
+  std::string cmd = shell_quote(KAPPA_BINARY);
+  for (const auto& a : args) cmd += " " + shell_quote(a);
+  cmd += " </dev/null 2>" + shell_quote((tmp / "stderr").string()) + " >/dev/null";
+  const int status = std::system(cmd.c_str());
+  RunResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.std_err = read_file(tmp / "stderr");
+  return r;
+}
+
+std::string read_file(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void write_file(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream out(p, std::ios::binary);
+  out << text;
+}
+
+namespace {
+void add_quad(Scene& scene, Vec3f a, Vec3f b, Vec3f c, Vec3f d, bool flip, std::uint32_t material) {
+  if (flip) std::swap(b, d);
+  scene.triangles.push_back({a, b, c});
+  scene.triangles.push_back({a, c, d});
+  scene.material_of.push_back(material);
+  scene.material_of.push_back(material);
+}
+}  // namespace
+
+void add_box(Scene& scene, const Vec3f& lo, const Vec3f& hi, bool inward, std::uint32_t material) {
+  const Vec3f p[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
+                      {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+  // Counter-clockwise seen from outside: outward normals.
+  add_quad(scene, p[0], p[3], p[2], p[1], inward, material);  // -z
+  add_quad(scene, p[4], p[5], p[6], p[7], inward, material);  // +z
+  add_quad(scene, p[0], p[4], p[7], p[3], inward, material);  // -x
+  add_quad(scene, p[1], p[2], p[6], p[5], inward, material);  // +x
+  add_quad(scene, p[0], p[1], p[5], p[4], inward, material);  // -y
+  add_quad(scene, p[3], p[7], p[6], p[2], inward, material);  // +y
+}
+
+void add_sphere(Scene& scene, const Vec3f& center, float radius, int rings, int segments, bool inward,
+                std::uint32_t material) {
+  auto vertex = [&](int ring, int seg) {
+    if (ring == 0) return center + Vec3f{0, radius, 0};
+    if (ring == rings) return center + Vec3f{0, -radius, 0};
+    const double theta = std::numbers::pi * ring / rings;
+    const double phi = 2 * std::numbers::pi * (seg % segments) / segments;
+    return center + Vec3f{float(radius * std::sin(theta) * std::cos(phi)), float(radius * std::cos(theta)),
+                          float(radius * std::sin(theta) * std::sin(phi))};
+  };
+  auto add = [&](Vec3f a, Vec3f b, Vec3f c) {
+    if (inward) std::swap(b, c);
+    scene.triangles.push_back({a, b, c});
+    scene.material_of.push_back(material);
+  };
+  for (int r = 0; r < rings; ++r) {
+    for (int s = 0; s < segments; ++s) {
+      const Vec3f a = vertex(r, s), b = vertex(r, s + 1), c = vertex(r + 1, s), d = vertex(r + 1, s + 1);
+      // Outward winding: seen from outside, counter-clockwise.
+      if (r != 0) add(a, b, d);
+      if (r != rings - 1) add(a, d, c);
+    }
+  }
+}
+
+}  // namespace kappa::test

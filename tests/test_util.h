@@ -1,0 +1,57 @@
+// Helpers shared by the tests: paths, running the `kappa` binary, and small
+// procedural scenes built in memory.
+#pragma once
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "renderer/scene.h"
+
+namespace kappa::test {
+
+inline std::filesystem::path source_dir() { return KAPPA_SOURCE_DIR; }
+inline std::filesystem::path assets_dir() { return source_dir() / "assets"; }
+/// ../shared/scenes beside the checkout, or empty if a user's clone has none.
+inline std::filesystem::path shared_scenes_dir() {
+  const auto p = source_dir().parent_path() / "shared" / "scenes";
+  return std::filesystem::is_directory(p) ? p : std::filesystem::path();
+}
+
+/// A fresh empty folder under the system temp dir, removed by the destructor.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  const std::filesystem::path& path() const { return m_path; }
+  std::filesystem::path operator/(const std::string& name) const { return m_path / name; }
+
+ private:
+  std::filesystem::path m_path;
+};
+
+struct RunResult {
+  int exit_code = -1;
+  std::string std_err;
+  std::vector<std::string> err_lines() const;
+};
+
+/// Runs build/kappa with `args` (each shell-quoted), stdin from /dev/null.
+RunResult run_kappa(const std::vector<std::string>& args);
+
+std::string read_file(const std::filesystem::path& p);
+void write_file(const std::filesystem::path& p, const std::string& text);
+
+/// Appends the 12 triangles of an axis-aligned box with normals facing
+/// inwards (`inward`) or outwards, all using material `material`.
+void add_box(Scene& scene, const Vec3f& lo, const Vec3f& hi, bool inward, std::uint32_t material);
+
+/// Appends a UV sphere of `rings` x `segments` (closed: poles are shared
+/// vertices), normals facing outwards or inwards.
+void add_sphere(Scene& scene, const Vec3f& center, float radius, int rings, int segments, bool inward,
+                std::uint32_t material);
+
+}  // namespace kappa::test

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Sets up a fresh Debian machine, builds Kappa and renders the default scene
+# (the Cornell box) to out/cornell-box.exr. Extra arguments go to `kappa render`.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tools/setup.sh
+tools/build.sh >/dev/null
+build/kappa render assets/cornell-box/scene.json --out out/cornell-box.exr "$@"
