@@ -39,10 +39,12 @@ std::string shell_quote(const std::string& s) {
 }
 }  // namespace
 
-RunResult run_kappa(const std::vector<std::string>& args) {
+RunResult run_kappa(const std::vector<std::string>& args, const std::filesystem::path& working_dir) {
   TempDir tmp;
   std::string cmd = shell_quote(KAPPA_BINARY);
   for (const auto& a : args) cmd += " " + shell_quote(a);
+  // In a subshell, so that a failing cd reports into the captured stderr too.
+  if (!working_dir.empty()) cmd = "(cd " + shell_quote(working_dir.string()) + " && exec " + cmd + ")";
   cmd += " </dev/null 2>" + shell_quote((tmp / "stderr").string()) + " >/dev/null";
   const int status = std::system(cmd.c_str());
   RunResult r;
