@@ -34,20 +34,15 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
   render.add_flag("-q,--quiet", o.quiet, "no progress bar and no summary line");
 }
 
-/// CLI11 messages can span lines; the contract is one line on stderr.
-std::string one_line(std::string s) {
-  for (char& c : s)
-    if (c == '\n') c = ' ';
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
-}
-
 }  // namespace
 
 int run_cli(int argc, char** argv) {
   CLI::App app{"Kappa: a path tracer that measures the cost of ray casting", "kappa"};
   app.set_version_flag("--version", std::string("kappa ") + version_string());
   app.require_subcommand(1);
+  // A repeated option takes its last value, so wrappers such as tools/run.sh
+  // can pass defaults that the user's own arguments override.
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   RenderOptions render_options;
   CLI::App* render = app.add_subcommand("render", "render a scene to EXR");
   add_render_options(*render, render_options);
@@ -62,20 +57,20 @@ int run_cli(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // CLI11's own codes are 105-109; Kappa's contract for bad options is 2.
-    std::fprintf(stderr, "kappa: error: %s (see kappa --help)\n", one_line(e.what()).c_str());
+    std::fprintf(stderr, "kappa: error: %s (see kappa --help)\n", printable_line(e.what()).c_str());
     return 2;
   }
 
   try {
     if (render->parsed()) return run_render(render_options);
   } catch (const InputError& e) {
-    std::fprintf(stderr, "kappa: error: %s\n", one_line(e.what()).c_str());
+    std::fprintf(stderr, "kappa: error: %s\n", printable_line(e.what()).c_str());
     return 2;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "kappa: error: out of memory\n");
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "kappa: internal error: %s\n", one_line(e.what()).c_str());
+    std::fprintf(stderr, "kappa: internal error: %s\n", printable_line(e.what()).c_str());
     return 1;
   }
   return 0;

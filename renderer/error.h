@@ -20,6 +20,11 @@ std::string located(const std::filesystem::path& file, std::size_t line, const s
 
 [[noreturn]] void fail(const std::filesystem::path& file, std::size_t line, const std::string& message);
 
+/// `message` as one line of valid UTF-8: messages quote file content, which
+/// may hold newlines or bytes that are not UTF-8 (Latin-1 names); those bytes
+/// become \xNN and line breaks become spaces.
+std::string printable_line(const std::string& message);
+
 /// Warnings gathered while loading, printed by the caller (and inspected by tests).
 using Warnings = std::vector<std::string>;
 

@@ -70,6 +70,14 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
       warnings.push_back(located(obj, 0, "material library '" + lib + "' not found; its materials use the default grey"));
   }
   for (const ObjPolygon& poly : scan.polygons) {
+    std::vector<std::size_t> distinct = poly.vertices;
+    std::sort(distinct.begin(), distinct.end());
+    distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+    if (distinct.size() < poly.vertices.size()) {
+      warnings.push_back(located(obj, poly.line,
+                                 "polygon of " + std::to_string(poly.vertices.size()) + " vertex references has only " +
+                                     std::to_string(distinct.size()) + " distinct vertices"));
+    }
     if (!is_convex(poly, scan.positions))
       warnings.push_back(located(obj, poly.line,
                                  "concave polygon with " + std::to_string(poly.vertices.size()) +

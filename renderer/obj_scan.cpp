@@ -80,6 +80,7 @@ class Scanner {
 
   ObjScan run(const std::string& bytes) {
     check_encoding(bytes);
+    m_total_vertices = count_vertex_statements(bytes);
     std::size_t line_no = 0;
     std::size_t start = 0;
     while (start < bytes.size()) {
@@ -94,7 +95,6 @@ class Scanner {
       m_scan.text.push_back('\n');  // keep line numbers aligned, add a final newline
       start = end + 1;
     }
-    check_forward_indices();
     m_short_faces.flush(m_file, "faces with fewer than 3 vertices skipped", m_warnings);
     m_unknown.flush(m_file, "unknown statements ignored", m_warnings);
     m_non_faces.flush(m_file, "line/point/curve elements ignored (only faces are rendered)", m_warnings);
@@ -121,6 +121,20 @@ class Scanner {
         fail(m_file, line, std::string("binary data (byte ") + hex + "): not a text OBJ file");
       }
     }
+  }
+
+  static long long count_vertex_statements(const std::string& bytes) {
+    long long n = 0;
+    std::size_t start = 0;
+    while (start < bytes.size()) {
+      std::size_t i = start;
+      while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t')) ++i;
+      if (i + 1 < bytes.size() && bytes[i] == 'v' && (bytes[i + 1] == ' ' || bytes[i + 1] == '\t')) ++n;
+      const std::size_t end = bytes.find('\n', start);
+      if (end == std::string::npos) break;
+      start = end + 1;
+    }
+    return n;
   }
 
   /// Returns true to keep the line for tinyobjloader, false to blank it.
@@ -225,9 +239,12 @@ class Scanner {
                "relative face index " + std::to_string(index) + " points before the first vertex (" +
                    std::to_string(defined) + " defined so far)");
         index = defined + index + 1;
-      } else if (index > m_max_index) {
-        m_max_index = index;
-        m_max_index_line = line_no;
+      } else if (index > m_total_vertices) {
+        // Positive indices may name vertices defined later in the file, so
+        // they are checked against the file's total.
+        fail(m_file, line_no,
+             "face index " + std::to_string(index) + " is out of range (the file has " +
+                 std::to_string(m_total_vertices) + " vertices)");
       }
       poly.vertices.push_back(static_cast<std::size_t>(index - 1));
     }
@@ -240,23 +257,12 @@ class Scanner {
     return true;
   }
 
-  /// Positive indices may name vertices defined later in the file; check them
-  /// against the final count.
-  void check_forward_indices() const {
-    const auto count = static_cast<long long>(m_scan.positions.size());
-    if (m_max_index > count)
-      fail(m_file, m_max_index_line,
-           "face index " + std::to_string(m_max_index) + " is out of range (the file has " +
-               std::to_string(count) + " vertices)");
-  }
-
   void warn(std::size_t line, const std::string& msg) { m_warnings.push_back(located(m_file, line, msg)); }
 
   const std::filesystem::path& m_file;
   Warnings& m_warnings;
   ObjScan m_scan;
-  long long m_max_index = 0;
-  std::size_t m_max_index_line = 0;
+  long long m_total_vertices = 0;  ///< `v` statements in the whole file
   WarningTally m_short_faces, m_unknown, m_non_faces;
 };
 

@@ -58,7 +58,7 @@ int run_render(const RenderOptions& options) {
 
   Warnings warnings;
   Scene scene = load_scene(options.scene, warnings);
-  for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", w.c_str());
+  for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", printable_line(w).c_str());
   if (options.width > 0) scene.width = options.width;
   if (options.height > 0) scene.height = options.height;
 

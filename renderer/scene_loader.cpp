@@ -140,9 +140,9 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings) {
     scene.camera.eye = field.vec3(cam["eye"], "camera.eye");
     scene.camera.look_at = field.vec3(cam["look_at"], "camera.look_at");
     scene.camera.up = field.vec3(cam["up"], "camera.up");
+    check_camera(file, scene.camera);
     scene.camera.vfov_deg =
         float(field.number(cam["vfov_deg"], "camera.vfov_deg", 0.0, 180.0, "a number of degrees in (0, 180)"));
-    check_camera(file, scene.camera);
     has_camera = true;
   }
   if (root.contains("environment")) scene.environment = field.vec3(root["environment"], "environment", true);
@@ -193,6 +193,9 @@ std::string scene_name(const std::filesystem::path& file) {
 
 Scene load_scene(const std::filesystem::path& file, Warnings& warnings) {
   Warnings pending;  // printed only if the scene loads: a refusal is one line
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) fail(file, 0, "file not found");
+  if (std::filesystem::is_directory(file, ec)) fail(file, 0, "is a directory, not a scene file");
   const std::string ext = lower_extension(file);
   Scene scene;
   if (ext == ".json") {

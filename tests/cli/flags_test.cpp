@@ -1,0 +1,209 @@
+// The command line's contract for bad options (README, "Exit codes" and
+// "## Bad input"): exit code 2, exactly one line on stderr, and no output
+// file created or touched. Plus the few things that must work: --help, a
+// tiny render, and the default output path.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <functional>
+
+#include "test_util.h"
+
+namespace kappa::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// One triangle, 64x64 film: the cheapest scene that renders.
+std::string good_scene() { return (assets_dir() / "malformed" / "scene_ok_control.json").string(); }
+
+/// Every file and folder under `dir`, relative, sorted: compared before and
+/// after a run, it shows anything Kappa created (output, temporary, out/).
+std::vector<std::string> tree(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    names.push_back(fs::relative(entry.path(), dir).string() + (entry.is_directory() ? "/" : ""));
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+void expect_one_line_refusal(const RunResult& r) {
+  EXPECT_EQ(r.exit_code, 2) << r.std_err;
+  const std::vector<std::string> lines = r.err_lines();
+  ASSERT_EQ(lines.size(), 1u) << "a refusal is exactly one line on stderr:\n" << r.std_err;
+  EXPECT_EQ(lines[0].rfind("kappa: error: ", 0), 0u) << lines[0];
+}
+
+// ---------------------------------------------------------------------------
+// Refusals: each runs in an empty temp folder (also the working directory, so
+// a wrongly accepted run without --out would leave out/ there and be seen).
+
+struct BadCase {
+  std::string name;
+  /// Prepares the temp folder (e.g. a directory where a file is expected).
+  std::function<void(const fs::path& tmp)> setup;
+  std::function<std::vector<std::string>(const fs::path& tmp)> args;
+};
+
+/// `kappa render <good scene> <flags> --out tmp/x.exr --quiet`
+BadCase bad_flags(std::string name, std::vector<std::string> flags) {
+  return {std::move(name), nullptr, [flags](const fs::path& tmp) {
+            std::vector<std::string> args = {"render", good_scene()};
+            args.insert(args.end(), flags.begin(), flags.end());
+            args.insert(args.end(), {"--out", (tmp / "x.exr").string(), "--quiet"});
+            return args;
+          }};
+}
+
+/// `kappa render <good scene> --out <out(tmp)> --quiet`
+BadCase bad_out(std::string name, std::function<void(const fs::path&)> setup,
+                std::function<std::string(const fs::path&)> out) {
+  return {std::move(name), std::move(setup), [out](const fs::path& tmp) {
+            return std::vector<std::string>{"render", good_scene(), "--out", out(tmp), "--quiet"};
+          }};
+}
+
+/// `kappa render <scene(tmp)> --out tmp/x.exr --quiet`
+BadCase bad_scene(std::string name, std::function<void(const fs::path&)> setup,
+                  std::function<std::string(const fs::path&)> scene) {
+  return {std::move(name), std::move(setup), [scene](const fs::path& tmp) {
+            return std::vector<std::string>{"render", scene(tmp), "--out", (tmp / "x.exr").string(), "--quiet"};
+          }};
+}
+
+void make_dir(const fs::path& p) { fs::create_directories(p); }
+
+std::vector<BadCase> bad_cases() {
+  return {
+      bad_flags("UnknownFlag", {"--bogus"}),
+      bad_flags("SppZero", {"--spp", "0"}),
+      bad_flags("SppNegative", {"--spp", "-3"}),
+      bad_flags("SppNotANumber", {"--spp", "abc"}),
+      bad_flags("WidthNegative", {"--width", "-5"}),
+      bad_flags("HeightZero", {"--height", "0"}),
+      bad_flags("MaxDepthNegative", {"--max-depth", "-1"}),
+      bad_flags("ThreadsZero", {"--threads", "0"}),
+      bad_flags("UnknownAccel", {"--accel", "nosuch"}),
+      bad_flags("UnknownAov", {"--aov", "bogus"}),
+      bad_out("OutNotExr", nullptr, [](const fs::path& tmp) { return (tmp / "x.png").string(); }),
+      bad_out("OutInMissingFolder", nullptr, [](const fs::path& tmp) { return (tmp / "nope" / "x.exr").string(); }),
+      bad_out("OutIsDirectory", [](const fs::path& tmp) { make_dir(tmp / "d.exr"); },
+              [](const fs::path& tmp) { return (tmp / "d.exr").string(); }),
+      // Root ignores permission bits, but nothing can create a file in /proc.
+      bad_out("OutUnwritable", nullptr, [](const fs::path&) { return std::string("/proc/kappa-test.exr"); }),
+      bad_scene("SceneMissing", nullptr, [](const fs::path& tmp) { return (tmp / "nosuch.json").string(); }),
+      bad_scene("SceneIsPlainDirectory", nullptr, [](const fs::path& tmp) { return tmp.string(); }),
+      bad_scene("SceneIsDirectoryNamedJson", [](const fs::path& tmp) { make_dir(tmp / "s.json"); },
+                [](const fs::path& tmp) { return (tmp / "s.json").string(); }),
+      bad_scene("SceneIsDirectoryNamedObj", [](const fs::path& tmp) { make_dir(tmp / "s.obj"); },
+                [](const fs::path& tmp) { return (tmp / "s.obj").string(); }),
+      {"NoSubcommand", nullptr, [](const fs::path&) { return std::vector<std::string>{}; }},
+      {"UnknownSubcommand", nullptr,
+       [](const fs::path&) { return std::vector<std::string>{"frobnicate", good_scene()}; }},
+  };
+}
+
+// Names the case in gtest's listings instead of dumping the struct's bytes.
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+
+class BadOption : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadOption, RefusedWithOneLineAndNoOutput) {
+  const BadCase& c = GetParam();
+  TempDir tmp;
+  if (c.setup) c.setup(tmp.path());
+  const std::vector<std::string> before = tree(tmp.path());
+  const std::vector<std::string> args = c.args(tmp.path());
+  SCOPED_TRACE("kappa " + ::testing::PrintToString(args));
+  const RunResult r = run_kappa(args, tmp.path());
+  expect_one_line_refusal(r);
+  EXPECT_EQ(tree(tmp.path()), before) << "the refused run created or removed files";
+  EXPECT_FALSE(fs::exists("/proc/kappa-test.exr"));
+}
+
+INSTANTIATE_TEST_SUITE_P(Cli, BadOption, ::testing::ValuesIn(bad_cases()),
+                         [](const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; });
+
+// ---------------------------------------------------------------------------
+// An existing output file survives every kind of refusal byte for byte: the
+// output is only ever replaced by a finished render.
+
+TEST(ExistingOutput, UntouchedByRefusals) {
+  TempDir tmp;
+  const fs::path out = tmp / "x.exr";
+  const std::string bytes = "not an EXR: a previous render the user wants to keep\n";
+  write_file(out, bytes);
+  const std::string bad_mesh = (assets_dir() / "malformed" / "scene_bad_mesh_inside.json").string();
+  const std::vector<std::vector<std::string>> refused = {
+      {"render", (tmp / "nosuch.json").string()},  // missing scene
+      {"render", good_scene(), "--spp", "0"},      // bad flag
+      {"render", good_scene(), "--aov", "bogus"},  // bad value found after parsing
+      {"render", bad_mesh},                        // the scene loader refuses
+  };
+  for (std::vector<std::string> args : refused) {
+    args.insert(args.end(), {"--out", out.string(), "--quiet"});
+    SCOPED_TRACE("kappa " + ::testing::PrintToString(args));
+    const RunResult r = run_kappa(args, tmp.path());
+    expect_one_line_refusal(r);
+    EXPECT_EQ(read_file(out), bytes) << "the existing output was modified";
+    EXPECT_EQ(tree(tmp.path()), std::vector<std::string>{"x.exr"}) << "stray files";
+  }
+}
+
+TEST(ExistingOutput, ReplacedByAGoodRender) {
+  // The control for the test above: the same file is overwritten when the
+  // render succeeds, so "untouched" is not an accident of the setup.
+  TempDir tmp;
+  const fs::path out = tmp / "x.exr";
+  write_file(out, "old");
+  const RunResult r = run_kappa(
+      {"render", good_scene(), "--width", "8", "--height", "8", "--spp", "1", "--out", out.string(), "--quiet"},
+      tmp.path());
+  EXPECT_EQ(r.exit_code, 0) << r.std_err;
+  EXPECT_NE(read_file(out), "old");
+  EXPECT_EQ(tree(tmp.path()), std::vector<std::string>{"x.exr"}) << "stray temporary";
+}
+
+// ---------------------------------------------------------------------------
+// What must work
+
+TEST(Help, ExitsZero) {
+  EXPECT_EQ(run_kappa({"--help"}).exit_code, 0);
+  EXPECT_EQ(run_kappa({"render", "--help"}).exit_code, 0);
+}
+
+TEST(GoodRender, TinyRenderCreatesTheOutput) {
+  TempDir tmp;
+  const fs::path out = tmp / "x.exr";
+  const RunResult r = run_kappa(
+      {"render", good_scene(), "--width", "8", "--height", "8", "--spp", "1", "--out", out.string(), "--quiet"},
+      tmp.path());
+  EXPECT_EQ(r.exit_code, 0) << r.std_err;
+  EXPECT_EQ(r.std_err, "") << "--quiet prints nothing on a clean render";
+  EXPECT_TRUE(fs::is_regular_file(out));
+  EXPECT_GT(fs::file_size(out), 0u);
+  EXPECT_EQ(tree(tmp.path()), std::vector<std::string>{"x.exr"}) << "stray temporary";
+}
+
+/// Renders `scene` without --out from inside an empty temp folder and returns
+/// what appeared there.
+std::vector<std::string> files_from_default_output(const std::string& scene) {
+  TempDir tmp;
+  const RunResult r =
+      run_kappa({"render", scene, "--width", "8", "--height", "8", "--spp", "1", "--quiet"}, tmp.path());
+  EXPECT_EQ(r.exit_code, 0) << r.std_err;
+  return tree(tmp.path());
+}
+
+TEST(GoodRender, DefaultOutputIsNamedAfterTheFileStem) {
+  EXPECT_EQ(files_from_default_output(good_scene()),
+            (std::vector<std::string>{"out/", "out/scene_ok_control.exr"}));
+}
+
+TEST(GoodRender, DefaultOutputOfSceneJsonIsNamedAfterItsFolder) {
+  EXPECT_EQ(files_from_default_output((assets_dir() / "cornell-box" / "scene.json").string()),
+            (std::vector<std::string>{"out/", "out/cornell-box.exr"}));
+}
+
+}  // namespace
+}  // namespace kappa::test
