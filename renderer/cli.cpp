@@ -3,9 +3,11 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <limits>
 #include <new>
 
 #include "accel/accel.h"
+#include "accel/grid_resolution.h"
 #include "error.h"
 #include "options.h"
 #include "render_command.h"
@@ -17,6 +19,23 @@ namespace {
 void add_render_options(CLI::App& render, RenderOptions& o) {
   render.add_option("scene", o.scene, "scene.json or .obj file")->required();
   render.add_option("--accel", o.accel, "accelerator")->check(CLI::IsMember(accelerator_names()))->capture_default_str();
+  render.add_option("--grid-res", o.grid_res, "grid resolution: auto, N (cubic) or NxNxN")
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            try {
+              parse_grid_resolution(value);
+              return std::string();
+            } catch (const std::invalid_argument& e) {
+              std::string reason = e.what();  // drop the "--grid-res: " prefix CLI11 adds again
+              return reason.substr(reason.find(": ") + 2);
+            }
+          },
+          "auto|N|NxNxN"))
+      ->capture_default_str();
+  render.add_option("--grid-density", o.grid_density, "cells per triangle for --grid-res auto (default 2)")
+      ->check(CLI::Range(1e-6, 1e6));
+  render.add_option("--grid-max-bytes", o.grid_max_bytes, "refuse larger grids (default: a quarter of RAM)")
+      ->check(CLI::Range(std::uint64_t(1), std::numeric_limits<std::uint64_t>::max()));
   render.add_option("--spp", o.spp, "samples per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
   render.add_option("--max-depth", o.max_depth, "bounces after the camera ray (1 = direct lighting)")
       ->check(CLI::Range(0, 1 << 20))
@@ -63,6 +82,9 @@ int run_cli(int argc, char** argv) {
 
   try {
     if (render->parsed()) return run_render(render_options);
+  } catch (const std::invalid_argument& e) {  // options an accelerator refuses
+    std::fprintf(stderr, "kappa: error: %s\n", printable_line(e.what()).c_str());
+    return 2;
   } catch (const InputError& e) {
     std::fprintf(stderr, "kappa: error: %s\n", printable_line(e.what()).c_str());
     return 2;

@@ -8,7 +8,10 @@ namespace kappa {
 
 struct RenderOptions {
   std::string scene;            ///< scene.json or .obj
-  std::string accel = "naive";  ///< accelerator name (accel/accel.h)
+  std::string accel = "grid";   ///< accelerator name (accel/accel.h)
+  std::string grid_res = "auto";   ///< --grid-res: auto, N or NxNxN
+  double grid_density = 0;         ///< --grid-density lambda (0 = the grid default)
+  std::uint64_t grid_max_bytes = 0;  ///< --grid-max-bytes (0 = a quarter of RAM)
   int spp = 64;                 ///< samples per pixel
   int max_depth = 32;           ///< bounces after the camera ray
   int rr_depth = 3;             ///< Russian roulette from this bounce on

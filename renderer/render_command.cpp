@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "accel/accel.h"
+#include "accel/grid.h"
 #include "atomic_file.h"
 #include "error.h"
 #include "exr_output.h"
@@ -41,11 +42,17 @@ std::filesystem::path output_path(const RenderOptions& options, const Scene& sce
   return dir / (scene.name + ".exr");
 }
 
+std::string grid_resolution_text(const Accelerator& accel) {
+  const auto* grid = dynamic_cast<const UniformGrid*>(&accel);
+  return grid ? grid->info().resolution.to_string() : std::string("none");
+}
+
 }  // namespace
 
 std::string RenderOptions::to_string() const {
   std::ostringstream s;
-  s << "scene=" << scene << " accel=" << accel << " spp=" << spp << " max_depth=" << max_depth
+  s << "scene=" << scene << " accel=" << accel << " grid_res=" << grid_res << " grid_density=" << grid_density
+    << " grid_max_bytes=" << grid_max_bytes << " spp=" << spp << " max_depth=" << max_depth
     << " rr_depth=" << (no_rr ? -1 : rr_depth) << " seed=" << seed << " threads=" << threads << " width=" << width
     << " height=" << height << " out=" << out << " aov=" << aov;
   return s.str();
@@ -67,7 +74,11 @@ int run_render(const RenderOptions& options) {
   AtomicOutput output(output_path(options, scene));
 
   const auto build_start = std::chrono::steady_clock::now();
-  const std::unique_ptr<Accelerator> accel = make_accelerator(options.accel, scene.triangles);
+  AccelOptions accel_options;
+  accel_options.grid_res = options.grid_res;
+  accel_options.grid_density = options.grid_density;
+  accel_options.grid_max_bytes = options.grid_max_bytes;
+  const std::unique_ptr<Accelerator> accel = make_accelerator(options.accel, scene.triangles, accel_options);
   const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   RenderSettings settings;
@@ -100,12 +111,20 @@ int run_render(const RenderOptions& options) {
       {"kappa:threads", threads},
       {"kappa:render_time_s", float(result.seconds)},
       {"kappa:accel_build_s", float(build_s)},
+      {"kappa:grid_res", grid_resolution_text(*accel)},
       {"kappa:rays", std::to_string(result.rays)},
   };
   write_exr(output.temp_path(), film, metadata);
   output.commit();
 
   if (!options.quiet) {
+    if (const auto* grid = dynamic_cast<const UniformGrid*>(accel.get())) {
+      const GridInfo& g = grid->info();
+      std::fprintf(stderr, "kappa: grid %s, N_c %llu, N %llu, theta_tot %llu, %.1f MiB, built in %.3f s\n",
+                   g.resolution.to_string().c_str(), static_cast<unsigned long long>(g.resolution.cells()),
+                   static_cast<unsigned long long>(g.N), static_cast<unsigned long long>(g.theta_tot),
+                   double(g.bytes) / double(1 << 20), g.build_s);
+    }
     std::fprintf(stderr, "kappa: %s %dx%d, %d spp, %s, %d threads: %.2f s, %llu rays, %.2f Mrays/s -> %s\n",
                  scene.name.c_str(), scene.width, scene.height, options.spp, std::string(accel->name()).c_str(), threads,
                  result.seconds, static_cast<unsigned long long>(result.rays),

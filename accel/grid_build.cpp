@@ -1,0 +1,149 @@
+// Building the uniform grid: bounds, resolution, then two parallel passes
+// over the triangles (count per cell, then fill) into compressed rows.
+#include <tbb/parallel_for.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cfloat>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "grid.h"
+#include "triangle_box.h"
+
+namespace kappa {
+namespace {
+
+/// Insertion inflation in float ulps of the scene's coordinate magnitude: well
+/// above the rounding of the float triangle test and the double DDA.
+constexpr double kMarginUlps = 32.0;
+
+bool usable(const Triangle& t) { return is_finite(t.v0) && is_finite(t.v1) && is_finite(t.v2) && double_area(t) > 0; }
+
+std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
+
+/// Calls f(cell index) for every cell of `grid` that triangle t overlaps.
+template <typename F>
+void for_each_overlapped_cell(const GridInfo& grid, const Vec3d& inv_cell, const Triangle& t, F&& f) {
+  const Vec3d v0(t.v0), v1(t.v1), v2(t.v2);
+  const Vec3d tlo = min(v0, min(v1, v2)), thi = max(v0, max(v1, v2));
+  int lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    const int n = grid.resolution[a];
+    // One cell of slack each way; the overlap test decides.
+    lo[a] = std::clamp(int(std::floor((tlo[a] - grid.lo[a]) * inv_cell[a])) - 1, 0, n - 1);
+    hi[a] = std::clamp(int(std::floor((thi[a] - grid.lo[a]) * inv_cell[a])) + 1, 0, n - 1);
+  }
+  const Vec3d margin{grid.margin, grid.margin, grid.margin};
+  for (int z = lo[2]; z <= hi[2]; ++z) {
+    for (int y = lo[1]; y <= hi[1]; ++y) {
+      for (int x = lo[0]; x <= hi[0]; ++x) {
+        const Vec3d cell_lo{grid.lo.x + x * grid.cell_size.x, grid.lo.y + y * grid.cell_size.y,
+                            grid.lo.z + z * grid.cell_size.z};
+        const Vec3d cell_hi{x + 1 == grid.resolution.nx ? grid.hi.x : cell_lo.x + grid.cell_size.x,
+                            y + 1 == grid.resolution.ny ? grid.hi.y : cell_lo.y + grid.cell_size.y,
+                            z + 1 == grid.resolution.nz ? grid.hi.z : cell_lo.z + grid.cell_size.z};
+        if (triangle_overlaps_box(v0, v1, v2, cell_lo - margin, cell_hi + margin))
+          f(std::uint64_t(x) + std::uint64_t(grid.resolution.nx) * (std::uint64_t(y) + std::uint64_t(grid.resolution.ny) * std::uint64_t(z)));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::uint64_t default_grid_max_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return std::uint64_t(4) << 30;
+  return std::uint64_t(pages) * std::uint64_t(page) / 4;
+}
+
+UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions& options) : m_triangles(triangles) {
+  const auto start = std::chrono::steady_clock::now();
+  if (triangles.size() >= std::size_t(kNoTriangle)) throw std::invalid_argument("grid: more than 2^32 - 1 triangles");
+
+  // Bounds of the usable triangles, in double.
+  std::vector<TriangleId> usable_ids;
+  usable_ids.reserve(triangles.size());
+  Vec3d lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  for (TriangleId i = 0; i < TriangleId(triangles.size()); ++i) {
+    const Triangle& t = triangles[i];
+    if (!usable(t)) continue;
+    usable_ids.push_back(i);
+    for (const Vec3f& v : {t.v0, t.v1, t.v2}) {
+      lo = min(lo, Vec3d(v));
+      hi = max(hi, Vec3d(v));
+    }
+  }
+  m_info.N = usable_ids.size();
+  m_info.degenerate = triangles.size() - usable_ids.size();
+  if (usable_ids.empty()) {
+    lo = hi = Vec3d{0, 0, 0};
+  }
+  const double magnitude = std::max(max_component(abs(lo)), max_component(abs(hi))) + length(hi - lo);
+  m_info.margin = kMarginUlps * double(FLT_EPSILON) * std::max(magnitude, double(FLT_MIN));
+  m_info.lo = lo - Vec3d{m_info.margin, m_info.margin, m_info.margin};
+  m_info.hi = hi + Vec3d{m_info.margin, m_info.margin, m_info.margin};
+  const Vec3d extent = m_info.hi - m_info.lo;
+
+  m_info.resolution = options.resolution ? *options.resolution
+                                         : choose_resolution(extent, std::max(1.0, options.density * double(m_info.N)));
+  const std::uint64_t cells = m_info.resolution.cells();
+  const std::uint64_t offset_bytes = (cells + 1) * sizeof(std::uint32_t);
+  if (cells >= std::numeric_limits<std::uint32_t>::max() || offset_bytes > options.max_bytes)
+    throw std::invalid_argument("grid: " + m_info.resolution.to_string() + " = " + std::to_string(cells) +
+                                " cells need " + mib(offset_bytes) + " for cell offsets alone, over --grid-max-bytes (" +
+                                mib(options.max_bytes) + ")");
+  for (int a = 0; a < 3; ++a) {
+    const double l = extent[a] / m_info.resolution[a];
+    (a == 0 ? m_info.cell_size.x : a == 1 ? m_info.cell_size.y : m_info.cell_size.z) = l;
+    (a == 0 ? m_inv_cell.x : a == 1 ? m_inv_cell.y : m_inv_cell.z) = 1.0 / l;
+  }
+
+  // Pass 1: count the triangles of each cell.
+  m_offsets.assign(cells + 1, 0);
+  tbb::parallel_for(std::size_t(0), usable_ids.size(), [&](std::size_t k) {
+    for_each_overlapped_cell(m_info, m_inv_cell, triangles[usable_ids[k]], [&](std::uint64_t c) {
+      std::atomic_ref<std::uint32_t>(m_offsets[c]).fetch_add(1, std::memory_order_relaxed);
+    });
+  });
+  // Exclusive prefix sum into offsets; 64-bit total to detect overflow.
+  std::uint64_t total = 0;
+  for (std::uint64_t c = 0; c < cells; ++c) {
+    const std::uint32_t n = m_offsets[c];
+    m_info.max_occupancy = std::max(m_info.max_occupancy, n);
+    m_info.empty_cells += n == 0;
+    m_offsets[c] = std::uint32_t(std::min<std::uint64_t>(total, std::numeric_limits<std::uint32_t>::max()));
+    total += n;
+  }
+  const std::uint64_t bytes = offset_bytes + total * sizeof(TriangleId);
+  if (total >= std::numeric_limits<std::uint32_t>::max() || bytes > options.max_bytes)
+    throw std::invalid_argument("grid: " + m_info.resolution.to_string() + " holds " + std::to_string(total) +
+                                " triangle references (" + mib(bytes) + "), over --grid-max-bytes (" +
+                                mib(options.max_bytes) + ") or 2^32 - 1 references");
+  m_offsets[cells] = std::uint32_t(total);
+  m_info.theta_tot = total;
+  m_info.bytes = bytes;
+
+  // Pass 2: fill. Threads race for slots within a cell, so each cell is
+  // sorted afterwards: the layout (and anything counted over it) does not
+  // depend on scheduling.
+  m_refs.resize(total);
+  std::vector<std::uint32_t> cursor(m_offsets.begin(), m_offsets.end() - 1);
+  tbb::parallel_for(std::size_t(0), usable_ids.size(), [&](std::size_t k) {
+    const TriangleId id = usable_ids[k];
+    for_each_overlapped_cell(m_info, m_inv_cell, triangles[id], [&](std::uint64_t c) {
+      const std::uint32_t slot = std::atomic_ref<std::uint32_t>(cursor[c]).fetch_add(1, std::memory_order_relaxed);
+      m_refs[slot] = id;
+    });
+  });
+  tbb::parallel_for(std::uint64_t(0), cells, [&](std::uint64_t c) {
+    std::sort(m_refs.begin() + m_offsets[c], m_refs.begin() + m_offsets[c + 1]);
+  });
+  m_info.build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace kappa

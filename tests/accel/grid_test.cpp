@@ -1,0 +1,305 @@
+// The uniform grid returns bitwise the same closest hit (triangle id, t,
+// barycentrics) and the same occlusion answer as naive, at every extreme.
+#include "accel/grid.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "accel/naive.h"
+#include "renderer/obj_loader.h"
+#include "test_util.h"
+
+namespace kappa {
+namespace {
+
+using Rays = std::vector<Ray>;
+
+/// Compares every ray; reports the first few disagreements in full.
+void expect_agreement(std::span<const Triangle> tris, const UniformGrid& grid, const Rays& rays) {
+  const NaiveAccelerator naive(tris);
+  std::size_t mismatches = 0, hits = 0;
+  for (const Ray& r : rays) {
+    const auto a = naive.closest_hit(r);
+    const auto b = grid.closest_hit(r);
+    const bool occluded_a = naive.any_hit(r), occluded_b = grid.any_hit(r);
+    hits += a.has_value();
+    const bool same = a.has_value() == b.has_value() && occluded_a == occluded_b &&
+                      (!a || (a->triangle == b->triangle && std::bit_cast<std::uint32_t>(a->t) ==
+                                                                  std::bit_cast<std::uint32_t>(b->t) &&
+                              a->b1 == b->b1 && a->b2 == b->b2));
+    if (!same && ++mismatches <= 3) {
+      ADD_FAILURE() << "ray o=(" << r.o.x << "," << r.o.y << "," << r.o.z << ") d=(" << r.d.x << "," << r.d.y << ","
+                    << r.d.z << ") tmin=" << r.tmin << " tmax=" << r.tmax << ": naive "
+                    << (a ? std::to_string(a->triangle) + " t=" + std::to_string(a->t) : std::string("miss"))
+                    << " any=" << occluded_a << ", grid "
+                    << (b ? std::to_string(b->triangle) + " t=" + std::to_string(b->t) : std::string("miss"))
+                    << " any=" << occluded_b << " (grid " << grid.info().resolution.to_string() << ")";
+    }
+  }
+  EXPECT_EQ(mismatches, 0u) << "of " << rays.size() << " rays (" << hits << " hits)";
+}
+
+UniformGrid make_grid(std::span<const Triangle> tris, std::optional<GridResolution> res = std::nullopt) {
+  GridOptions options;
+  options.resolution = res;
+  return UniformGrid(tris, options);
+}
+
+Vec3f lerp(const Vec3d& a, const Vec3d& b, double t) { return Vec3f(a + (b - a) * t); }
+
+/// The ray families the grid must get right, built from the grid's own planes.
+Rays ray_families(const UniformGrid& grid, std::size_t per_family, std::uint32_t seed) {
+  const GridInfo& g = grid.info();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0), wide(-0.5, 1.5);
+  const Vec3d lo = g.lo, hi = g.hi;
+  auto inside = [&] { return lerp(lo, hi, 0.0) + Vec3f(Vec3d{u(rng), u(rng), u(rng)} * (hi - lo)); };
+  auto around = [&] { return Vec3f(lo + Vec3d{wide(rng), wide(rng), wide(rng)} * (hi - lo)); };
+  auto direction = [&] {
+    std::normal_distribution<float> n;
+    return Vec3f{n(rng), n(rng), n(rng)};
+  };
+  auto plane = [&](int axis) {  // a random cell plane, including the box faces
+    std::uniform_int_distribution<int> i(0, g.resolution[axis]);
+    return float(g.lo[axis] + i(rng) * g.cell_size[axis]);
+  };
+  auto grid_vertex = [&] { return Vec3f{plane(0), plane(1), plane(2)}; };
+  const Vec3f axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+
+  Rays rays;
+  for (std::size_t i = 0; i < per_family; ++i) {
+    // Random rays from inside and from around the box.
+    rays.push_back({inside(), direction()});
+    rays.push_back({around(), direction()});
+    // Axis-parallel rays, with +0 and -0 in the other components.
+    Vec3f d = axes[i % 6];
+    if (i % 12 >= 6) d = Vec3f{d.x == 0 ? -0.0f : d.x, d.y == 0 ? -0.0f : d.y, d.z == 0 ? -0.0f : d.z};
+    rays.push_back({around(), d});
+    // Rays lying in a cell plane: one coordinate on the plane, no motion across it.
+    {
+      const int axis = int(i % 3);
+      Vec3f o = around();
+      Vec3f dir = direction();
+      (axis == 0 ? o.x : axis == 1 ? o.y : o.z) = plane(axis);
+      (axis == 0 ? dir.x : axis == 1 ? dir.y : dir.z) = 0.0f;
+      rays.push_back({o, dir});
+      // ... and along a grid edge (two coordinates on planes).
+      Vec3f e = around();
+      const int a1 = (axis + 1) % 3;
+      (axis == 0 ? e.x : axis == 1 ? e.y : e.z) = plane(axis);
+      (a1 == 0 ? e.x : a1 == 1 ? e.y : e.z) = plane(a1);
+      rays.push_back({e, axes[2 * ((axis + 2) % 3)] * (i % 2 ? 1.0f : -1.0f)});
+    }
+    // Through grid vertices, from inside and outside.
+    {
+      const Vec3f o = i % 2 ? inside() : around();
+      const Vec3f target = grid_vertex();
+      if (!(target == o)) rays.push_back({o, target - o});
+    }
+    // Starting exactly on a box face.
+    {
+      Vec3f o = inside();
+      const int axis = int(i % 3);
+      (axis == 0 ? o.x : axis == 1 ? o.y : o.z) = float(i % 2 ? g.lo[axis] : g.hi[axis]);
+      rays.push_back({o, direction()});
+    }
+    // A finite tmax that ends inside the grid, and a tmin > 0.
+    {
+      Ray r{around(), direction()};
+      r.tmax = float(u(rng) * length(hi - lo));
+      rays.push_back(r);
+      Ray s{inside(), direction()};
+      s.tmin = float(u(rng) * 0.3 * length(hi - lo));
+      rays.push_back(s);
+    }
+  }
+  return rays;
+}
+
+std::vector<Triangle> random_soup(std::size_t n, std::uint32_t seed, float size = 0.1f) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> pos(-1.0f, 1.0f), edge(-size, size);
+  std::vector<Triangle> tris;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3f c{pos(rng), pos(rng), pos(rng)};
+    tris.push_back({c + Vec3f{edge(rng), edge(rng), edge(rng)}, c + Vec3f{edge(rng), edge(rng), edge(rng)},
+                    c + Vec3f{edge(rng), edge(rng), edge(rng)}});
+  }
+  return tris;
+}
+
+std::vector<Triangle> load_mesh(const std::filesystem::path& obj) {
+  Scene s;
+  Warnings w;
+  load_obj(obj, s, w);
+  return s.triangles;
+}
+
+std::size_t rays_for(std::size_t triangles) { return std::clamp<std::size_t>(3000000 / (triangles + 100) / 10, 20, 3000); }
+
+TEST(Grid, RandomSoupsFromOneToAHundredThousandTriangles) {
+  for (std::size_t n : {1, 2, 10, 100, 1000, 10000, 100000}) {
+    SCOPED_TRACE(std::to_string(n) + " triangles");
+    const auto tris = random_soup(n, std::uint32_t(n), n < 100 ? 0.5f : 0.1f);
+    const UniformGrid grid = make_grid(tris);
+    expect_agreement(tris, grid, ray_families(grid, rays_for(n), 11));
+  }
+}
+
+TEST(Grid, LowResolutionBunny) {
+  const auto tris = load_mesh(test::assets_dir() / "bunny-lowres" / "bunny_lowres.obj");
+  ASSERT_EQ(tris.size(), 3674u);
+  for (auto res : {std::optional<GridResolution>{}, std::optional<GridResolution>{{1, 1, 1}},
+                   std::optional<GridResolution>{{1, 1, 512}}, std::optional<GridResolution>{{37, 5, 64}}}) {
+    const UniformGrid grid = make_grid(tris, res);
+    SCOPED_TRACE(grid.info().resolution.to_string());
+    expect_agreement(tris, grid, ray_families(grid, 150, 12));
+  }
+}
+
+TEST(Grid, FullBunnyFromSharedScenes) {
+  const auto shared = test::shared_scenes_dir();
+  if (shared.empty()) GTEST_SKIP() << "../shared/scenes not present (a user's clone): skipping the 69k-triangle bunny";
+  const auto tris = load_mesh(shared / "bunny" / "bunny.obj");
+  const UniformGrid grid = make_grid(tris);
+  expect_agreement(tris, grid, ray_families(grid, 8, 13));
+}
+
+TEST(Grid, OneTriangleAndFlatScenes) {
+  const std::vector<Triangle> one = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}};  // flat in z
+  const std::vector<Triangle> quad = {{{-1, 0, -1}, {1, 0, -1}, {1, 0, 1}}, {{-1, 0, -1}, {1, 0, 1}, {-1, 0, 1}}};
+  std::vector<Triangle> line;  // zero extent in y and z: triangles standing on the x axis
+  for (int i = 0; i < 50; ++i) line.push_back({{float(i), 0, 0}, {float(i) + 1, 0, 0}, {float(i) + 0.5f, 0, 0}});
+  // Degenerate triangles are left out of the grid; add real ones on the same line for something to hit.
+  for (int i = 0; i < 50; ++i) line.push_back({{float(i), 0, 0}, {float(i) + 1, 0, 0}, {float(i) + 0.5f, 1e-3f, 0}});
+  for (const std::vector<Triangle>* tris : {&one, &quad, static_cast<const std::vector<Triangle>*>(&line)}) {
+    for (auto res : {std::optional<GridResolution>{}, std::optional<GridResolution>{{8, 8, 8}}}) {
+      const UniformGrid grid = make_grid(*tris, res);
+      SCOPED_TRACE(std::to_string(tris->size()) + " triangles, grid " + grid.info().resolution.to_string());
+      expect_agreement(*tris, grid, ray_families(grid, 300, 14));
+    }
+  }
+}
+
+TEST(Grid, ScalesAndTranslations) {
+  const auto base = random_soup(500, 15, 0.2f);
+  for (const auto& [scale, shift] : std::vector<std::pair<float, Vec3f>>{
+           {1e-6f, {0, 0, 0}}, {1e-3f, {0, 0, 0}}, {1e3f, {0, 0, 0}}, {1e6f, {0, 0, 0}}, {1.0f, {1e6f, -1e6f, 1e6f}},
+           {10.0f, {1e6f, 0, 0}}}) {
+    std::vector<Triangle> tris;
+    for (const Triangle& t : base) tris.push_back({t.v0 * scale + shift, t.v1 * scale + shift, t.v2 * scale + shift});
+    const UniformGrid grid = make_grid(tris);
+    SCOPED_TRACE("scale " + std::to_string(scale) + " shift " + std::to_string(shift.x));
+    expect_agreement(tris, grid, ray_families(grid, 200, 16));
+  }
+}
+
+TEST(Grid, DegenerateTrianglesAreLeftOutAndCounted) {
+  auto tris = random_soup(300, 17, 0.2f);
+  tris.push_back({{0, 0, 0}, {1, 1, 1}, {2, 2, 2}});  // collinear
+  tris.push_back({{0.5f, 0.5f, 0.5f}, {0.5f, 0.5f, 0.5f}, {0, 1, 0}});  // repeated vertex
+  tris.push_back({{0, 0, 0}, {0, 0, 0}, {0, 0, 0}});
+  const UniformGrid grid = make_grid(tris);
+  EXPECT_EQ(grid.info().degenerate, 3u);
+  EXPECT_EQ(grid.info().N, 300u);
+  expect_agreement(tris, grid, ray_families(grid, 200, 18));
+}
+
+TEST(Grid, LargeCubicResolutionOnASmallScene) {
+  const auto tris = random_soup(50, 19, 0.3f);
+  const UniformGrid grid = make_grid(tris, GridResolution{512, 512, 512});
+  EXPECT_EQ(grid.info().resolution.cells(), 512u * 512u * 512u);
+  expect_agreement(tris, grid, ray_families(grid, 100, 20));
+}
+
+TEST(Grid, WallsOnTheBoundingBoxStayInTheirCells) {
+  // A closed box: every wall lies exactly on a face of the grid's box. Rays
+  // from inside must all hit, at every resolution (a ceiling that vanished
+  // through rounding would let them escape).
+  Scene room;
+  test::add_box(room, {0, 0, 0}, {556, 548.8f, 559.2f}, true, 0);
+  for (auto res : {GridResolution{1, 1, 1}, GridResolution{3, 7, 5}, GridResolution{64, 64, 64}}) {
+    const UniformGrid grid = make_grid(room.triangles, res);
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::normal_distribution<float> n;
+    for (int i = 0; i < 20000; ++i) {
+      const Vec3f o{u(rng) * 556, u(rng) * 548.8f, u(rng) * 559.2f};
+      ASSERT_TRUE(grid.closest_hit(Ray{o, {n(rng), n(rng), n(rng)}})) << res.to_string();
+    }
+    expect_agreement(room.triangles, grid, ray_families(grid, 300, 22));
+  }
+}
+
+TEST(Grid, OccupancyCountsEveryTriangleInEveryCellItTouches) {
+  // A triangle lying exactly in the plane x = 1 of a 2x2x2 grid over [0,2]^3
+  // touches all eight cells' closed boxes? No: it touches the four cells on
+  // either side of x = 1 it overlaps in y and z.
+  const std::vector<Triangle> tris = {{{0, 0, 0}, {2, 0, 0}, {0, 2, 2}},   // spans the box diagonal
+                                      {{1, 0.1f, 0.1f}, {1, 0.4f, 0.1f}, {1, 0.1f, 0.4f}}};  // on the plane x = 1
+  const UniformGrid grid = make_grid(tris, GridResolution{2, 2, 2});
+  std::size_t cells_with_second = 0;
+  for (std::uint64_t c = 0; c < 8; ++c)
+    for (TriangleId id : grid.cell(c)) cells_with_second += id == 1;
+  EXPECT_EQ(cells_with_second, 2u);  // cells (0,0,0) and (1,0,0), both closed at x = 1
+  EXPECT_EQ(grid.info().theta_tot, [&] {
+    std::uint64_t total = 0;
+    for (std::uint64_t c = 0; c < 8; ++c) total += grid.cell(c).size();
+    return total;
+  }());
+}
+
+TEST(Grid, ResolutionParsingAndChoice) {
+  EXPECT_FALSE(parse_grid_resolution("auto"));
+  EXPECT_EQ(*parse_grid_resolution("64"), (GridResolution{64, 64, 64}));
+  EXPECT_EQ(*parse_grid_resolution("64x32x16"), (GridResolution{64, 32, 16}));
+  for (const char* bad : {"", "0", "-4", "64x32", "64x32x16x2", "abc", "4x4xq", "99999"})
+    EXPECT_THROW(parse_grid_resolution(bad), std::invalid_argument) << bad;
+  // Near-cubic cells: a 4:2:1 box with 8000 target cells.
+  const GridResolution r = choose_resolution({4, 2, 1}, 8000);
+  EXPECT_NEAR(double(r.cells()), 8000.0, 8000.0 * 0.3);
+  EXPECT_NEAR(4.0 / r.nx, 1.0 / r.nz, 0.3 / r.nz);
+  // Flat and line-like boxes: one cell across the missing dimensions.
+  const GridResolution flat = choose_resolution({10, 1e-9, 10}, 400);
+  EXPECT_EQ(flat.ny, 1);
+  EXPECT_EQ(flat.nx, 20);
+  const GridResolution line = choose_resolution({10, 1e-9, 1e-9}, 50);
+  EXPECT_EQ(line, (GridResolution{50, 1, 1}));
+}
+
+TEST(Grid, MemoryLimitIsAClearError) {
+  const auto tris = random_soup(10, 23);
+  GridOptions options;
+  options.resolution = GridResolution{1024, 1024, 1024};
+  options.max_bytes = 1 << 20;
+  try {
+    UniformGrid grid(tris, options);
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--grid-max-bytes"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Grid, EmptyAndAllDegenerateScenesMiss) {
+  const std::vector<Triangle> none;
+  const UniformGrid empty = make_grid(none);
+  EXPECT_FALSE(empty.closest_hit(Ray{{0, 0, 0}, {0, 0, 1}}));
+  const std::vector<Triangle> flat = {{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}};
+  const UniformGrid degenerate = make_grid(flat);
+  EXPECT_FALSE(degenerate.closest_hit(Ray{{0.5f, 1, 0}, {0, -1, 0}}));
+  EXPECT_FALSE(degenerate.any_hit(Ray{{0.5f, 1, 0}, {0, -1, 0}}));
+}
+
+TEST(Grid, NonFiniteRaysMissLikeNaive) {
+  const auto tris = random_soup(100, 24);
+  const UniformGrid grid = make_grid(tris);
+  const NaiveAccelerator naive(tris);
+  for (const Ray& r : {Ray{{NAN, 0, 0}, {1, 0, 0}}, Ray{{0, 0, 0}, {INFINITY, 0, 0}}, Ray{{0, 0, 0}, {0, 0, 0}}}) {
+    EXPECT_EQ(grid.closest_hit(r).has_value(), naive.closest_hit(r).has_value());
+    EXPECT_EQ(grid.any_hit(r), naive.any_hit(r));
+  }
+}
+
+}  // namespace
+}  // namespace kappa
