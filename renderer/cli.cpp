@@ -32,7 +32,7 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
           },
           "auto|N|NxNxN"))
       ->capture_default_str();
-  render.add_option("--grid-density", o.grid_density, "cells per triangle for --grid-res auto (default 2)")
+  render.add_option("--grid-density", o.grid_density, "cells per triangle for --grid-res auto (default 32)")
       ->check(CLI::Range(1e-6, 1e6));
   render.add_option("--grid-max-bytes", o.grid_max_bytes, "refuse larger grids (default: a quarter of RAM)")
       ->check(CLI::Range(std::uint64_t(1), std::numeric_limits<std::uint64_t>::max()));

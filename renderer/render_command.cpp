@@ -125,7 +125,7 @@ int run_render(const RenderOptions& options) {
                    static_cast<unsigned long long>(g.N), static_cast<unsigned long long>(g.theta_tot),
                    double(g.bytes) / double(1 << 20), g.build_s);
     }
-    std::fprintf(stderr, "kappa: %s %dx%d, %d spp, %s, %d threads: %.2f s, %llu rays, %.2f Mrays/s -> %s\n",
+    std::fprintf(stderr, "kappa: %s %dx%d, %d spp, %s, %d threads: %.2f s, %llu rays, %.3g Mrays/s -> %s\n",
                  scene.name.c_str(), scene.width, scene.height, options.spp, std::string(accel->name()).c_str(), threads,
                  result.seconds, static_cast<unsigned long long>(result.rays),
                  result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0, output.target().c_str());

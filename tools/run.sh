@@ -5,5 +5,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/setup.sh
 tools/build.sh >/dev/null
-# 256 spp take about a minute on 2 cores with the naive accelerator.
-build/kappa render assets/cornell-box/scene.json --out out/cornell-box.exr --spp 256 "$@"
+# 400 spp take about a minute on 2 cores (grid accelerator).
+build/kappa render assets/cornell-box/scene.json --out out/cornell-box.exr --spp 400 "$@"
