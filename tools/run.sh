@@ -6,4 +6,5 @@ cd "$(dirname "$0")/.."
 tools/setup.sh
 tools/build.sh >/dev/null
 # 400 spp take about a minute on 2 cores (grid accelerator).
-build/kappa render assets/cornell-box/scene.json --out out/cornell-box.exr --spp 400 "$@"
+# The output goes to the default path, out/cornell-box.exr (out/ is created).
+build/kappa render assets/cornell-box/scene.json --spp 400 "$@"
