@@ -3,6 +3,7 @@
 // with the shared watertight test.
 #include "grid.h"
 
+#include <cfloat>
 #include <cmath>
 #include <limits>
 
@@ -37,6 +38,7 @@ template <bool AnyHit>
 bool UniformGrid::traverse(const Ray& ray, Hit& best) const {
   // Non-finite rays and d = 0 hit nothing (as in naive, whose test yields NaN).
   if (m_refs.empty() || !is_finite(ray.o) || !is_finite(ray.d) || ray.d == Vec3f{0, 0, 0}) return false;
+  if (!(ray.tmin <= ray.tmax)) return false;  // also NaN bounds: naive misses these too
   const Vec3d o(ray.o), d(ray.d);
   const GridInfo& g = m_info;
 
@@ -61,39 +63,50 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best) const {
   // A hit found within `margin_t` of a cell's exit may still be beaten by a
   // triangle of the next cell whose float test rounds the other way: walk
   // one more cell in that case.
-  const double margin_t = g.margin / length(d);
+  // The float test's rounding grows with |vertex - origin|: an origin far
+  // outside the scene widens the margin (but not the cells' insertion margin,
+  // which covers origins within a few scene diagonals; see grid.h).
+  const double margin = std::max(g.margin, kMarginUlps * double(FLT_EPSILON) * double(max_component(abs(ray.o))));
+  const double margin_t = margin / length(d);
   t0 = std::max(double(ray.tmin), t0 - margin_t);
   if (t0 > t1 + margin_t) return false;
 
-  // Entry cell and, per axis, the step and the t of the next cell plane.
+  // Entry cell and, per axis, the step, the t of the next cell plane and the
+  // t between planes. Accumulating t_delta in double drifts by ~1e-13 of t
+  // over thousands of steps, far inside the cells' insertion margin.
   int cell[3], step[3], last[3];
-  double t_next[3];
+  double t_next[3], t_delta[3];
+  std::int64_t stride[3] = {1, g.resolution.nx, std::int64_t(g.resolution.nx) * g.resolution.ny};
   const Vec3d entry = o + d * t0;
+  std::int64_t c = 0;
   for (int a = 0; a < 3; ++a) {
     const int n = g.resolution[a];
     cell[a] = std::clamp(int(std::floor((entry[a] - g.lo[a]) * m_inv_cell[a])), 0, n - 1);
+    c += cell[a] * stride[a];
     if (d[a] > 0) {
       step[a] = 1;
       last[a] = n;
       t_next[a] = (g.lo[a] + (cell[a] + 1) * g.cell_size[a] - o[a]) * inv_d[a];
+      t_delta[a] = g.cell_size[a] * inv_d[a];
     } else if (d[a] < 0) {
       step[a] = -1;
       last[a] = -1;
       t_next[a] = (g.lo[a] + cell[a] * g.cell_size[a] - o[a]) * inv_d[a];
+      t_delta[a] = -g.cell_size[a] * inv_d[a];
+      stride[a] = -stride[a];
     } else {
       step[a] = 0;
       last[a] = -2;  // never reached
       t_next[a] = std::numeric_limits<double>::infinity();
+      t_delta[a] = 0;
     }
   }
 
   const PreparedRay prepared(ray);
   Mailbox mailbox;
-  const std::uint64_t sx = 1, sy = std::uint64_t(g.resolution.nx), sz = sy * std::uint64_t(g.resolution.ny);
   const double t_end = t1 + margin_t;
   while (true) {
-    const std::uint64_t c = std::uint64_t(cell[0]) * sx + std::uint64_t(cell[1]) * sy + std::uint64_t(cell[2]) * sz;
-    for (std::uint32_t k = m_offsets[c], end = m_offsets[c + 1]; k < end; ++k) {
+    for (std::uint32_t k = m_offsets[std::size_t(c)], end = m_offsets[std::size_t(c) + 1]; k < end; ++k) {
       const TriangleId id = m_refs[k];
       if (mailbox.seen(id)) continue;
       if constexpr (AnyHit) {
@@ -112,7 +125,8 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best) const {
     if (t_exit > t_end || step[axis] == 0) break;  // step 0: no plane left to cross
     cell[axis] += step[axis];
     if (cell[axis] == last[axis]) break;
-    t_next[axis] = (g.lo[axis] + (cell[axis] + (step[axis] > 0 ? 1 : 0)) * g.cell_size[axis] - o[axis]) * inv_d[axis];
+    c += stride[axis];
+    t_next[axis] += t_delta[axis];
   }
   return best.valid();
 }

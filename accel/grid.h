@@ -27,6 +27,11 @@ namespace kappa {
 /// best near 8-16 and models on a wide ground plane (bunny) near 64-128.
 inline constexpr double kDefaultGridDensity = 32.0;
 
+/// Insertion margin of every cell, in float ulps of the scene's coordinate
+/// magnitude (max |coordinate| + diagonal): well above the rounding of the
+/// float triangle test and of the double DDA.
+inline constexpr double kMarginUlps = 32.0;
+
 /// A quarter of physical memory: the default --grid-max-bytes.
 std::uint64_t default_grid_max_bytes();
 

@@ -17,12 +17,6 @@
 namespace kappa {
 namespace {
 
-/// Insertion inflation in float ulps of the scene's coordinate magnitude: well
-/// above the rounding of the float triangle test and the double DDA.
-constexpr double kMarginUlps = 32.0;
-
-bool usable(const Triangle& t) { return is_finite(t.v0) && is_finite(t.v1) && is_finite(t.v2) && double_area(t) > 0; }
-
 std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
 
 /// Calls f(cell index) for every cell of `grid` that triangle t overlaps.
@@ -33,9 +27,10 @@ void for_each_overlapped_cell(const GridInfo& grid, const Vec3d& inv_cell, const
   int lo[3], hi[3];
   for (int a = 0; a < 3; ++a) {
     const int n = grid.resolution[a];
-    // One cell of slack each way; the overlap test decides.
-    lo[a] = std::clamp(int(std::floor((tlo[a] - grid.lo[a]) * inv_cell[a])) - 1, 0, n - 1);
-    hi[a] = std::clamp(int(std::floor((thi[a] - grid.lo[a]) * inv_cell[a])) + 1, 0, n - 1);
+    // The margin, plus one cell of slack each way; the overlap test decides.
+    const double reach = grid.margin * inv_cell[a] + 1.0;
+    lo[a] = int(std::clamp(std::floor((tlo[a] - grid.lo[a]) * inv_cell[a] - reach), 0.0, double(n - 1)));
+    hi[a] = int(std::clamp(std::floor((thi[a] - grid.lo[a]) * inv_cell[a] + reach), 0.0, double(n - 1)));
   }
   const Vec3d margin{grid.margin, grid.margin, grid.margin};
   for (int z = lo[2]; z <= hi[2]; ++z) {
@@ -71,7 +66,7 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
   Vec3d lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
   for (TriangleId i = 0; i < TriangleId(triangles.size()); ++i) {
     const Triangle& t = triangles[i];
-    if (!usable(t)) continue;
+    if (!usable_triangle(t)) continue;
     usable_ids.push_back(i);
     for (const Vec3f& v : {t.v0, t.v1, t.v2}) {
       lo = min(lo, Vec3d(v));
@@ -89,13 +84,24 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
   m_info.hi = hi + Vec3d{m_info.margin, m_info.margin, m_info.margin};
   const Vec3d extent = m_info.hi - m_info.lo;
 
-  m_info.resolution = options.resolution ? *options.resolution
-                                         : choose_resolution(extent, std::max(1.0, options.density * double(m_info.N)));
+  if (options.resolution) {
+    m_info.resolution = *options.resolution;
+  } else {
+    // lambda * N, but never more cells than 32-bit offsets or the memory
+    // budget allow (offsets and the fill pass's cursors: 8 bytes a cell).
+    const double cap = std::min(double(std::numeric_limits<std::uint32_t>::max() - 2), double(options.max_bytes) / 16.0);
+    m_info.resolution = choose_resolution(extent, std::clamp(options.density * double(m_info.N), 1.0, std::max(1.0, cap)));
+  }
   const std::uint64_t cells = m_info.resolution.cells();
+  // Offsets plus the fill pass's per-cell cursors.
   const std::uint64_t offset_bytes = (cells + 1) * sizeof(std::uint32_t);
-  if (cells >= std::numeric_limits<std::uint32_t>::max() || offset_bytes > options.max_bytes)
+  if (cells >= std::numeric_limits<std::uint32_t>::max())
     throw std::invalid_argument("grid: " + m_info.resolution.to_string() + " = " + std::to_string(cells) +
-                                " cells need " + mib(offset_bytes) + " for cell offsets alone, over --grid-max-bytes (" +
+                                " cells, over the 2^32 - 1 a grid can index");
+  if (2 * offset_bytes > options.max_bytes)
+    throw std::invalid_argument("grid: " + m_info.resolution.to_string() + " = " + std::to_string(cells) +
+                                " cells need " + mib(2 * offset_bytes) +
+                                " for cell offsets and build cursors alone, over --grid-max-bytes (" +
                                 mib(options.max_bytes) + ")");
   for (int a = 0; a < 3; ++a) {
     const double l = extent[a] / m_info.resolution[a];

@@ -2,12 +2,17 @@
 
 namespace kappa {
 
+NaiveAccelerator::NaiveAccelerator(std::span<const Triangle> triangles) : m_triangles(triangles) {
+  m_usable.reserve(triangles.size());
+  for (TriangleId i = 0; i < TriangleId(triangles.size()); ++i)
+    if (usable_triangle(triangles[i])) m_usable.push_back(i);
+}
+
 std::optional<Hit> NaiveAccelerator::closest_hit(const Ray& ray) const {
   const PreparedRay prepared(ray);
   Hit best;
   best.t = ray.tmax;
-  const auto n = static_cast<TriangleId>(m_triangles.size());
-  for (TriangleId i = 0; i < n; ++i) test_closest(prepared, m_triangles[i], i, ray.tmin, best);
+  for (const TriangleId i : m_usable) test_closest(prepared, m_triangles[i], i, ray.tmin, best);
   if (!best.valid()) return std::nullopt;
   return best;
 }
@@ -15,8 +20,8 @@ std::optional<Hit> NaiveAccelerator::closest_hit(const Ray& ray) const {
 bool NaiveAccelerator::any_hit(const Ray& ray) const {
   const PreparedRay prepared(ray);
   float t, b0, b1, b2;
-  for (const Triangle& tri : m_triangles) {
-    if (intersect_triangle(prepared, tri, ray.tmin, ray.tmax, t, b0, b1, b2)) return true;
+  for (const TriangleId i : m_usable) {
+    if (intersect_triangle(prepared, m_triangles[i], ray.tmin, ray.tmax, t, b0, b1, b2)) return true;
   }
   return false;
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <span>
+#include <vector>
 
 #include "accel.h"
 
@@ -10,7 +11,7 @@ namespace kappa {
 
 class NaiveAccelerator final : public Accelerator {
  public:
-  explicit NaiveAccelerator(std::span<const Triangle> triangles) : m_triangles(triangles) {}
+  explicit NaiveAccelerator(std::span<const Triangle> triangles);
 
   using Accelerator::any_hit;  // keep the batch forms visible
   using Accelerator::closest_hit;
@@ -20,6 +21,10 @@ class NaiveAccelerator final : public Accelerator {
 
  private:
   std::span<const Triangle> m_triangles;
+  /// Ids of the triangles with non-zero area and finite vertices, ascending:
+  /// the same set every accelerator may hit (a degenerate triangle can pass
+  /// the float test's sign checks after rounding, so it is left out here too).
+  std::vector<TriangleId> m_usable;
 };
 
 }  // namespace kappa

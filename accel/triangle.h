@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "float_util.h"
@@ -47,9 +48,11 @@ struct PreparedRay {
 /// are hit by at least one of them (no ray slips through a closed mesh).
 inline bool intersect_triangle(const PreparedRay& r, const Triangle& tri, float tmin, float tmax,
                                float& t_out, float& b0_out, float& b1_out, float& b2_out) {
-  const Vec3f A = tri.v0 - r.o;
-  const Vec3f B = tri.v1 - r.o;
-  const Vec3f C = tri.v2 - r.o;
+  // Vertices relative to the origin, permuted so the ray runs along z. Array
+  // indexing is cheaper than selecting components by comparisons.
+  const float A[3] = {tri.v0.x - r.o.x, tri.v0.y - r.o.y, tri.v0.z - r.o.z};
+  const float B[3] = {tri.v1.x - r.o.x, tri.v1.y - r.o.y, tri.v1.z - r.o.z};
+  const float C[3] = {tri.v2.x - r.o.x, tri.v2.y - r.o.y, tri.v2.z - r.o.z};
 
   const float Ax = A[r.kx] - r.Sx * A[r.kz];
   const float Ay = A[r.ky] - r.Sy * A[r.kz];
@@ -114,8 +117,13 @@ inline bool intersect_triangle(const PreparedRay& r, const Triangle& tri, float 
 /// keeps it if it is closer under closer_than's tie rule.
 inline void test_closest(const PreparedRay& r, const Triangle& tri, TriangleId id, float tmin, Hit& best) {
   float t, b0, b1, b2;
-  // tmax = best.t keeps equal-t candidates so the tie rule can see them.
-  if (intersect_triangle(r, tri, tmin, best.t, t, b0, b1, b2) && closer_than(t, id, best)) {
+  // The range test before the division rounds differently from t itself, so
+  // a triangle at exactly best.t could be cut by it, and which of two equal-t
+  // triangles survives would depend on test order. A limit a few ulps above
+  // best.t lets every equal-t candidate reach the tie rule; closer_than alone
+  // decides (best.t starts at ray.tmax, so the ray's range still holds).
+  const float limit = best.t * (1.0f + 8.0f * std::numeric_limits<float>::epsilon());
+  if (intersect_triangle(r, tri, tmin, limit, t, b0, b1, b2) && closer_than(t, id, best)) {
     best = Hit{id, t, b0, b1, b2};
   }
 }
@@ -125,6 +133,11 @@ inline double double_area(const Triangle& tri) {
   const Vec3d e1 = Vec3d(tri.v1) - Vec3d(tri.v0);
   const Vec3d e2 = Vec3d(tri.v2) - Vec3d(tri.v0);
   return length(cross(e1, e2));
+}
+
+/// Triangles every accelerator may hit: finite vertices and non-zero area.
+inline bool usable_triangle(const Triangle& t) {
+  return is_finite(t.v0) && is_finite(t.v1) && is_finite(t.v2) && double_area(t) > 0;
 }
 
 }  // namespace kappa

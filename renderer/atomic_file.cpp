@@ -33,6 +33,10 @@ extern "C" void remove_temporaries_and_exit(int sig) {
 
 void install_handlers() {
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    // A signal the parent ignores (nohup, a background job's Ctrl-C) stays ignored.
+    struct sigaction old {};
+    ::sigaction(sig, nullptr, &old);
+    if (old.sa_handler == SIG_IGN) continue;
     struct sigaction sa {};
     sa.sa_handler = remove_temporaries_and_exit;
     sigemptyset(&sa.sa_mask);
@@ -68,10 +72,19 @@ AtomicOutput::AtomicOutput(const std::filesystem::path& target) : m_target(targe
   // the .exr ending keeps format detection by extension working.
   m_temp = dir / ("." + target.filename().string() + ".kappa-" + std::to_string(::getpid()) + ".tmp" +
                   target.extension().string());
-  const int fd = ::open(m_temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd < 0) fail(target, 0, std::string("cannot write: ") + std::strerror(errno));
-  ::close(fd);
+  // Registered for the signal handler before it exists, so no interrupt can
+  // leave it behind.
   m_slot = claim_slot(m_temp.string());
+  if (m_slot < 0) fail(target, 0, "cannot write: path too long or too many outputs at once");
+  const int fd = ::open(m_temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) {
+    const int err = errno;
+    release_slot(m_slot);
+    m_slot = -1;
+    m_committed = true;  // nothing to remove
+    fail(target, 0, std::string("cannot write: ") + std::strerror(err));
+  }
+  ::close(fd);
 }
 
 AtomicOutput::~AtomicOutput() {

@@ -65,9 +65,11 @@ class PathTracer {
         if (depth == 0) {
           L += beta * mat.emission;
         } else {
-          const float dist2 = hit->t * hit->t;
-          const float light_pdf = m_lights.pmf_of_triangle(hit->triangle) * dist2 /
-                                  (cos_o * m_lights.area_of_triangle(hit->triangle));
+          // An emitter too dim to be a light (pmf 0) is reached only by BSDF
+          // sampling, which then carries its whole weight.
+          const float pmf = m_lights.pmf_of_triangle(hit->triangle);
+          const float light_pdf =
+              pmf > 0.0f ? pmf * (hit->t * hit->t) / (cos_o * m_lights.area_of_triangle(hit->triangle)) : 0.0f;
           L += beta * mat.emission * power_heuristic(prev_bsdf_pdf, light_pdf);
         }
       }
@@ -99,7 +101,7 @@ class PathTracer {
  private:
   /// One light sample with its MIS weight against BSDF sampling.
   Vec3f direct_light(const SurfacePoint& sp, const Vec3f& n, const Vec3f& f, Rng& rng, std::uint64_t& rays) const {
-    const std::size_t light = m_lights.choose(rng.uniform());
+    const std::size_t light = m_lights.choose(rng.uniform_double());
     const float u1 = rng.uniform(), u2 = rng.uniform();
     if (light == m_lights.environment_index()) {
       // Cosine-weighted about the oriented normal: directions below the

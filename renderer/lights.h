@@ -18,7 +18,7 @@ class Lights {
 
   /// Picks a light from u in [0, 1): the index of an emissive triangle in
   /// `triangle(i)`, or `environment_index()` for the sky.
-  std::size_t choose(float u) const;
+  std::size_t choose(double u) const;
   std::size_t environment_index() const { return m_triangles.size(); }
   TriangleId triangle(std::size_t light) const { return m_triangles[light]; }
   float area(std::size_t light) const { return m_areas[light]; }
@@ -28,7 +28,7 @@ class Lights {
   float pmf(std::size_t light) const { return m_pmf[light]; }
   float pmf_of_triangle(TriangleId id) const { return m_pmf_of_triangle.empty() ? 0.0f : m_pmf_of_triangle[id]; }
   float pmf_environment() const { return m_pmf_environment; }
-  float area_of_triangle(TriangleId id) const { return m_area_of_triangle[id]; }
+  float area_of_triangle(TriangleId id) const { return m_area_of_triangle.empty() ? 0.0f : m_area_of_triangle[id]; }
 
  private:
   std::vector<TriangleId> m_triangles;  ///< emissive triangles

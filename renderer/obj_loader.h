@@ -11,10 +11,10 @@
 
 namespace kappa {
 
-/// Largest coordinate magnitude accepted. Beyond it float products in the
-/// intersection test and squared distances in light sampling lose all
-/// precision or overflow, so such files are refused rather than half-rendered.
-inline constexpr double kMaxCoordinate = 1e15;
+/// Largest coordinate magnitude accepted. The watertight test forms products
+/// of three coordinates (T ~ coord^3), which overflow float near 7e12: such
+/// files are refused rather than half-rendered.
+inline constexpr double kMaxCoordinate = 1e12;
 
 /// Appends the triangles and materials of `obj` to `scene`. Zero-area triangles
 /// are dropped (with a warning). Throws InputError on refused input.

@@ -82,7 +82,8 @@ class Scanner {
     check_encoding(bytes);
     m_total_vertices = count_vertex_statements(bytes);
     std::size_t line_no = 0;
-    std::size_t start = 0;
+    // A UTF-8 byte-order mark is not part of the first statement.
+    std::size_t start = bytes.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
     while (start < bytes.size()) {
       std::size_t end = bytes.find('\n', start);
       if (end == std::string::npos) end = bytes.size();
@@ -129,6 +130,7 @@ class Scanner {
     while (start < bytes.size()) {
       std::size_t i = start;
       while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t')) ++i;
+      if (start == 0 && bytes.rfind("\xEF\xBB\xBF", 0) == 0) i += 3;
       if (i + 1 < bytes.size() && bytes[i] == 'v' && (bytes[i + 1] == ' ' || bytes[i + 1] == '\t')) ++n;
       const std::size_t end = bytes.find('\n', start);
       if (end == std::string::npos) break;

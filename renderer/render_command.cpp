@@ -1,9 +1,11 @@
 #include "render_command.h"
 
+#include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <optional>
 #include <cstdio>
 #include <sstream>
 
@@ -68,10 +70,17 @@ int run_render(const RenderOptions& options) {
   for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", printable_line(w).c_str());
   if (options.width > 0) scene.width = options.width;
   if (options.height > 0) scene.height = options.height;
+  if (scene.camera_framed)  // frame again for the film's final aspect ratio
+    scene.camera = framing_camera(scene.bounds(), scene.camera.vfov_deg, float(scene.width) / float(scene.height));
 
   // Claim the output before rendering: an unwritable path fails now, not
   // after an hour of work.
   AtomicOutput output(output_path(options, scene));
+
+  // --threads limits the accelerator build as well as the render.
+  std::optional<tbb::global_control> thread_limit;
+  if (options.threads > 0)
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(options.threads));
 
   const auto build_start = std::chrono::steady_clock::now();
   AccelOptions accel_options;

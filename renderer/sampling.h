@@ -41,6 +41,13 @@ class Rng {
   /// Uniform in [0, 1), 24 random bits: never returns 1.
   float uniform() { return float(next_u32() >> 8) * 0x1p-24f; }
 
+  /// Uniform in [0, 1) with 53 random bits: for choosing among millions of
+  /// lights, where 24 bits would round their probabilities.
+  double uniform_double() {
+    const std::uint64_t hi = next_u32(), lo = next_u32();
+    return double(((hi << 32) | lo) >> 11) * 0x1p-53;
+  }
+
  private:
   std::uint64_t m_state = 0;
   std::uint64_t m_inc = 1;

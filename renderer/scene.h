@@ -36,6 +36,7 @@ struct Scene {
   std::vector<std::uint32_t> material_of;  ///< per triangle, index into materials
   std::vector<Material> materials;
   CameraSpec camera;
+  bool camera_framed = false;  ///< the camera frames the bounds (no camera given): re-frame if the film changes
   Vec3f environment{0, 0, 0};  ///< constant radiance of rays that escape
   int width = 512;
   int height = 512;

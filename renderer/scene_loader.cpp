@@ -159,7 +159,10 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings) {
     if (!std::filesystem::is_regular_file(mesh, ec)) fail(file, 0, "mesh '" + mesh.string() + "' not found");
     load_obj(mesh, scene, warnings);
   }
-  if (!has_camera) scene.camera = framing_camera(scene.bounds(), 39.3077f, float(scene.width) / float(scene.height));
+  if (!has_camera) {
+    scene.camera = framing_camera(scene.bounds(), 39.3077f, float(scene.width) / float(scene.height));
+    scene.camera_framed = true;
+  }
   return scene;
 }
 
@@ -169,8 +172,10 @@ Scene load_obj_scene(const std::filesystem::path& file, Warnings& warnings) {
   scene.name = scene_name(file);
   scene.environment = {1, 1, 1};
   load_obj(file, scene, warnings);
-  if (!scene.triangles.empty())
+  if (!scene.triangles.empty()) {
     scene.camera = framing_camera(scene.bounds(), 39.3077f, float(scene.width) / float(scene.height));
+    scene.camera_framed = true;
+  }
   return scene;
 }
 

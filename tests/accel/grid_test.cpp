@@ -303,3 +303,33 @@ TEST(Grid, NonFiniteRaysMissLikeNaive) {
 
 }  // namespace
 }  // namespace kappa
+
+namespace kappa {
+namespace {
+
+TEST(Grid, RaysThroughSharedMeshVerticesPickTheSameTriangleAsNaive) {
+  // Rays aimed exactly at mesh vertices meet several triangles at (nearly)
+  // equal t: the tie rule must decide, not the order in which the grid
+  // happens to test them. Shuffled ids put higher ids in earlier cells.
+  Scene sphere;
+  test::add_sphere(sphere, {0, 0, 0}, 1.0f, 10, 20, false, 0);
+  std::vector<Triangle> tris = sphere.triangles;
+  std::mt19937 rng(31);
+  std::shuffle(tris.begin(), tris.end(), rng);
+  std::uniform_real_distribution<float> u(-3.0f, 3.0f);
+  for (auto res : {GridResolution{4, 4, 4}, GridResolution{16, 16, 16}, GridResolution{33, 7, 19}}) {
+    const UniformGrid grid = make_grid(tris, res);
+    Rays rays;
+    for (std::size_t i = 0; i < 6000; ++i) {
+      const Triangle& t = tris[i % tris.size()];
+      const Vec3f target = i % 3 == 0 ? t.v0 : i % 3 == 1 ? t.v1 : (t.v1 + t.v2) * 0.5f;
+      const Vec3f o{u(rng), u(rng), u(rng)};
+      if (!(target == o)) rays.push_back({o, target - o});
+    }
+    SCOPED_TRACE(res.to_string());
+    expect_agreement(tris, grid, rays);
+  }
+}
+
+}  // namespace
+}  // namespace kappa

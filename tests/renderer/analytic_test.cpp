@@ -117,3 +117,28 @@ TEST(Analytic, ConvexObjectUnderSkyReadsRhoTimesE) {
 
 }  // namespace
 }  // namespace kappa
+
+namespace kappa {
+namespace {
+
+TEST(Analytic, EmitterTooDimToBeALightStillShinesThroughBsdfSampling) {
+  // Ke so small its luminance rounds to 0 in float: not a light for NEE, but
+  // a diffuse floor under it must still see it by BSDF sampling, with no NaN.
+  Scene s;
+  s.materials.push_back(Material{"floor", {0.5f, 0.5f, 0.5f}, {0, 0, 0}});
+  s.materials.push_back(Material{"dim", {0, 0, 0}, {1e-44f, 0, 0}});
+  s.triangles.push_back({{-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}});
+  s.triangles.push_back({{-10, 0, -10}, {10, 0, 10}, {10, 0, -10}});
+  s.triangles.push_back({{-10, 1, -10}, {10, 1, 10}, {-10, 1, 10}});  // faces down
+  s.triangles.push_back({{-10, 1, -10}, {10, 1, -10}, {10, 1, 10}});
+  s.material_of = {0, 0, 1, 1};
+  s.camera = CameraSpec{{0, 0.5f, 0}, {0, 0, 0.01f}, {0, 0, 1}, 60.0f};
+  s.width = s.height = 8;
+  RenderSettings settings;
+  settings.spp = 4;
+  const Film film = test::render_scene(s, settings);
+  for (float v : film.rgb) ASSERT_TRUE(std::isfinite(v));
+}
+
+}  // namespace
+}  // namespace kappa

@@ -113,3 +113,17 @@ TEST(ObjLoader, CrlfAndMissingFinalNewlineLoad) {
 
 }  // namespace
 }  // namespace kappa
+
+namespace kappa {
+namespace {
+
+TEST(ObjLoader, Utf8ByteOrderMarkIsSkipped) {
+  Warnings w;
+  const Scene s = load("\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", w);
+  ASSERT_EQ(s.triangles.size(), 1u);
+  EXPECT_EQ(s.triangles[0].v0, (Vec3f{0, 0, 0}));
+  EXPECT_TRUE(w.empty());
+}
+
+}  // namespace
+}  // namespace kappa
