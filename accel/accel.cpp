@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "embree.h"
 #include "grid.h"
 #include "naive.h"
 
@@ -15,11 +16,12 @@ void Accelerator::any_hit(std::span<const Ray> rays, std::span<bool> occluded) c
   for (std::size_t i = 0; i < rays.size(); ++i) occluded[i] = any_hit(rays[i]);
 }
 
-std::vector<std::string> accelerator_names() { return {"grid", "naive"}; }
+std::vector<std::string> accelerator_names() { return {"embree", "grid", "naive"}; }
 
 std::unique_ptr<Accelerator> make_accelerator(std::string_view name, std::span<const Triangle> triangles,
                                               const AccelOptions& options) {
   if (name == "naive") return std::make_unique<NaiveAccelerator>(triangles);
+  if (name == "embree") return std::make_unique<EmbreeAccelerator>(triangles);
   if (name == "grid") {
     GridOptions grid;
     grid.resolution = parse_grid_resolution(options.grid_res);

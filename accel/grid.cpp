@@ -28,7 +28,7 @@ class Mailbox {
   }
 
  private:
-  static constexpr std::uint32_t kSize = 32;
+  static constexpr std::uint32_t kSize = 16;
   TriangleId m_ids[kSize];
 };
 

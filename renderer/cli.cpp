@@ -10,6 +10,7 @@
 #include "accel/grid_resolution.h"
 #include "error.h"
 #include "options.h"
+#include "bench_command.h"
 #include "render_command.h"
 #include "version.h"
 
@@ -53,6 +54,33 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
   render.add_flag("-q,--quiet", o.quiet, "no progress bar and no summary line");
 }
 
+void add_bench_options(CLI::App& bench, BenchOptions& o) {
+  bench.add_option("scene", o.scene, "scene.json or .obj file")->required();
+  bench.add_option("--accel", o.accels, "accelerators to compare")
+      ->delimiter(',')
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->check(CLI::IsMember(accelerator_names()))
+      ->capture_default_str();
+  bench.add_option("--rays", o.rays, "ray classes")
+      ->delimiter(',')
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->check(CLI::IsMember({"camera", "bounce", "shadow", "lines"}))
+      ->capture_default_str();
+  bench.add_option("--threads", o.threads, "thread counts")
+      ->delimiter(',')
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(CLI::Range(1, 4096))->capture_default_str();
+  bench.add_option("--repeat", o.repeat, "timed passes per figure (the median is reported)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  bench.add_option("--n", o.n, "rays per class")->check(CLI::Range(std::size_t(1), std::size_t(1) << 28))->capture_default_str();
+  bench.add_option("--seed", o.seed, "random seed of the ray sets")->capture_default_str();
+  bench.add_option("--json", o.json, "also write the figures as JSON");
+  bench.add_option("--grid-res", o.grid_res, "grid resolution: auto, N or NxNxN")->capture_default_str();
+  bench.add_option("--grid-density", o.grid_density, "cells per triangle for --grid-res auto")->check(CLI::Range(1e-6, 1e6));
+  bench.add_option("--naive-budget", o.naive_budget_s, "skip naive when its estimated run time exceeds this (s)")
+      ->capture_default_str();
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
@@ -65,6 +93,9 @@ int run_cli(int argc, char** argv) {
   RenderOptions render_options;
   CLI::App* render = app.add_subcommand("render", "render a scene to EXR");
   add_render_options(*render, render_options);
+  BenchOptions bench_options;
+  CLI::App* bench = app.add_subcommand("bench", "time every accelerator on the same rays (Mrays/s)");
+  add_bench_options(*bench, bench_options);
 
   try {
     app.parse(argc, argv);
@@ -82,6 +113,7 @@ int run_cli(int argc, char** argv) {
 
   try {
     if (render->parsed()) return run_render(render_options);
+    if (bench->parsed()) return run_bench(bench_options);
   } catch (const std::invalid_argument& e) {  // options an accelerator refuses
     std::fprintf(stderr, "kappa: error: %s\n", printable_line(e.what()).c_str());
     return 2;

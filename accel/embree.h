@@ -1,0 +1,64 @@
+// Intel Embree 3 as the reference accelerator: a production BVH (SAH with
+// spatial splits at RTC_BUILD_QUALITY_HIGH) to measure the grid against.
+//
+// Not bitwise naive: Embree has its own watertight (robust-mode Pluecker)
+// triangle test, so t and barycentrics agree with naive's to float rounding,
+// and where two triangles tie in t (shared edges and vertices, coplanar
+// overlaps) it may return either one, not the lower id. Kappa's (tmin, tmax]
+// is passed as Embree's closed [tnear, tfar] with tnear = the next float above
+// tmin (and at least the smallest normal float), so a hit exactly at tmin, or
+// at t = 0, is excluded as in Kappa. Unlike naive, Embree does not reject hits
+// whose t > 0 is within rounding error of zero; the renderer's offset origins
+// keep those from arising (the image tests check it).
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+#include <span>
+#include <string>
+
+#include "accel.h"
+
+namespace kappa {
+
+class EmbreeAccelerator final : public Accelerator {
+ public:
+  /// Builds the BVH. Throws std::runtime_error (one line) if Embree fails.
+  explicit EmbreeAccelerator(std::span<const Triangle> triangles);
+  ~EmbreeAccelerator() override;
+  EmbreeAccelerator(const EmbreeAccelerator&) = delete;  // Embree holds `this` in its callbacks
+  EmbreeAccelerator& operator=(const EmbreeAccelerator&) = delete;
+
+  using Accelerator::any_hit;  // keep the batch forms visible
+  using Accelerator::closest_hit;
+  std::optional<Hit> closest_hit(const Ray& ray) const override;
+  bool any_hit(const Ray& ray) const override;
+  std::string_view name() const override { return "embree"; }
+
+  /// Bytes Embree holds for this accelerator after the build (its copy of
+  /// the vertices and indices plus the BVH), from its memory monitor.
+  std::uint64_t bytes() const { return std::uint64_t(m_bytes.load()); }
+  /// Wall-clock seconds of the build (copy + rtcCommitScene).
+  double build_s() const { return m_build_s; }
+  /// Zero-area or non-finite triangles kept out of the BVH (never hit).
+  std::uint64_t degenerate() const { return m_degenerate; }
+
+ private:
+  static void on_error(void* self, RTCError code, const char* message);
+  static bool on_memory(void* self, ssize_t bytes, bool post);
+  /// Throws if Embree has reported an error since the last check.
+  void check(const char* step);
+
+  RTCDevice m_device = nullptr;
+  RTCScene m_scene = nullptr;
+  std::atomic<std::int64_t> m_bytes{0};  ///< net bytes allocated by m_device
+  double m_build_s = 0;
+  std::uint64_t m_degenerate = 0;
+  std::mutex m_error_mutex;  ///< the build reports errors from TBB workers
+  std::string m_error;       ///< first error reported, "" if none
+};
+
+}  // namespace kappa
