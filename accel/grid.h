@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "accel.h"
@@ -39,6 +40,10 @@ struct GridOptions {
   std::optional<GridResolution> resolution;  ///< nullopt = auto from density
   double density = kDefaultGridDensity;
   std::uint64_t max_bytes = default_grid_max_bytes();
+  /// Cells over this box instead of the scene's bounds (e.g. a grid shifted
+  /// by a random offset, to average occupancy over placements); it must hold
+  /// the triangles that should be in the grid.
+  std::optional<std::pair<Vec3d, Vec3d>> box;
 };
 
 /// What the grid measured about itself while building (for reports).
@@ -56,6 +61,10 @@ struct GridInfo {
   double build_s = 0;
 };
 
+/// How far a walk goes: to the closest hit, to any hit, or along the whole
+/// chord (the paper's lines and segments, for statistics).
+enum class GridWalk { closest, any, whole };
+
 class UniformGrid final : public Accelerator {
  public:
   /// Throws std::invalid_argument if the grid would exceed options.max_bytes
@@ -68,6 +77,17 @@ class UniformGrid final : public Accelerator {
   bool any_hit(const Ray& ray) const override;
   std::string_view name() const override { return "grid"; }
 
+  /// The same queries, reporting each visited cell, triangle test, mailbox
+  /// skip and hit to `recorder` (see grid_traverse.h, stats/counters.h).
+  template <class Recorder>
+  std::optional<Hit> closest_hit(const Ray& ray, Recorder& recorder) const;
+  template <class Recorder>
+  bool any_hit(const Ray& ray, Recorder& recorder) const;
+  /// Walks every cell of the ray's [tmin, tmax] inside the grid, testing
+  /// every triangle met (no stop at a hit); returns the closest hit.
+  template <class Recorder>
+  std::optional<Hit> walk_whole(const Ray& ray, Recorder& recorder) const;
+
   const GridInfo& info() const { return m_info; }
   std::uint64_t cell_index(int ix, int iy, int iz) const {
     return std::uint64_t(ix) + std::uint64_t(m_info.resolution.nx) *
@@ -79,8 +99,8 @@ class UniformGrid final : public Accelerator {
   }
 
  private:
-  template <bool AnyHit>
-  bool traverse(const Ray& ray, Hit& best) const;
+  template <GridWalk Mode, class Recorder>
+  bool traverse(const Ray& ray, Hit& best, Recorder& recorder) const;
 
   std::span<const Triangle> m_triangles;
   GridInfo m_info;

@@ -82,6 +82,10 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
   m_info.margin = kMarginUlps * double(FLT_EPSILON) * std::max(magnitude, double(FLT_MIN));
   m_info.lo = lo - Vec3d{m_info.margin, m_info.margin, m_info.margin};
   m_info.hi = hi + Vec3d{m_info.margin, m_info.margin, m_info.margin};
+  if (options.box) {
+    m_info.lo = options.box->first;
+    m_info.hi = options.box->second;
+  }
   const Vec3d extent = m_info.hi - m_info.lo;
 
   if (options.resolution) {

@@ -1,0 +1,174 @@
+// The grid walk, templated on what it records (stats/counters.h): the
+// renderer's hot path instantiates it with a recorder whose methods are empty,
+// so statistics that are off cost nothing; `kappa cast` and stats-on renders
+// instantiate it with per-cell counters. Included by grid.cpp and by code that
+// walks the grid with a recorder.
+#pragma once
+
+#include <cfloat>
+#include <cmath>
+#include <limits>
+
+#include "grid.h"
+
+namespace kappa {
+namespace detail {
+
+/// Tests each triangle at most once per ray although it may sit in many
+/// cells: a small direct-mapped cache of recently tested ids on the stack (no
+/// allocation, no per-thread state). A collision only costs a repeated test,
+/// which gives the same answer.
+class Mailbox {
+ public:
+  Mailbox() {
+    for (TriangleId& id : m_ids) id = kNoTriangle;
+  }
+  /// True if `id` was already tested; otherwise records it.
+  bool seen(TriangleId id) {
+    TriangleId& slot = m_ids[id & (kSize - 1)];
+    if (slot == id) return true;
+    slot = id;
+    return false;
+  }
+
+ private:
+  static constexpr std::uint32_t kSize = 16;
+  TriangleId m_ids[kSize];
+};
+
+}  // namespace detail
+
+template <GridWalk Mode, class Recorder>
+bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const {
+  constexpr bool AnyHit = Mode == GridWalk::any;
+  constexpr bool Whole = Mode == GridWalk::whole;
+  // Non-finite rays and d = 0 hit nothing (as in naive, whose test yields NaN).
+  if (m_refs.empty() || !is_finite(ray.o) || !is_finite(ray.d) || ray.d == Vec3f{0, 0, 0}) return false;
+  if (!(ray.tmin <= ray.tmax)) return false;  // also NaN bounds: naive misses these too
+  const Vec3d o(ray.o), d(ray.d);
+  const GridInfo& g = m_info;
+
+  // Clip [tmin, tmax] to the grid box. Float directions are normal numbers
+  // in double (even float subnormals), so 1/d is finite for d != 0; d = +-0
+  // is handled apart, without dividing.
+  double t0 = double(ray.tmin), t1 = double(ray.tmax);
+  Vec3d inv_d;
+  for (int a = 0; a < 3; ++a) {
+    double inv = 0;
+    if (d[a] == 0.0) {
+      if (o[a] < g.lo[a] || o[a] > g.hi[a]) return false;
+    } else {
+      inv = 1.0 / d[a];
+      double tn = (g.lo[a] - o[a]) * inv, tf = (g.hi[a] - o[a]) * inv;
+      if (tn > tf) std::swap(tn, tf);
+      t0 = std::max(t0, tn);
+      t1 = std::min(t1, tf);
+    }
+    (a == 0 ? inv_d.x : a == 1 ? inv_d.y : inv_d.z) = inv;
+  }
+  // A hit found within `margin_t` of a cell's exit may still be beaten by a
+  // triangle of the next cell whose float test rounds the other way: walk
+  // one more cell in that case.
+  // The float test's rounding grows with |vertex - origin|: an origin far
+  // outside the scene widens the margin (but not the cells' insertion margin,
+  // which covers origins within a few scene diagonals; see grid.h).
+  const double margin = std::max(g.margin, kMarginUlps * double(FLT_EPSILON) * double(max_component(abs(ray.o))));
+  const double margin_t = margin / length(d);
+  t0 = std::max(double(ray.tmin), t0 - margin_t);
+  if (t0 > t1 + margin_t) return false;
+
+  // Entry cell and, per axis, the step, the t of the next cell plane and the
+  // t between planes. Accumulating t_delta in double drifts by ~1e-13 of t
+  // over thousands of steps, far inside the cells' insertion margin.
+  int cell[3], step[3], last[3];
+  double t_next[3], t_delta[3];
+  std::int64_t stride[3] = {1, g.resolution.nx, std::int64_t(g.resolution.nx) * g.resolution.ny};
+  const Vec3d entry = o + d * t0;
+  std::int64_t c = 0;
+  for (int a = 0; a < 3; ++a) {
+    const int n = g.resolution[a];
+    cell[a] = std::clamp(int(std::floor((entry[a] - g.lo[a]) * m_inv_cell[a])), 0, n - 1);
+    c += cell[a] * stride[a];
+    if (d[a] > 0) {
+      step[a] = 1;
+      last[a] = n;
+      t_next[a] = (g.lo[a] + (cell[a] + 1) * g.cell_size[a] - o[a]) * inv_d[a];
+      t_delta[a] = g.cell_size[a] * inv_d[a];
+    } else if (d[a] < 0) {
+      step[a] = -1;
+      last[a] = -1;
+      t_next[a] = (g.lo[a] + cell[a] * g.cell_size[a] - o[a]) * inv_d[a];
+      t_delta[a] = -g.cell_size[a] * inv_d[a];
+      stride[a] = -stride[a];
+    } else {
+      step[a] = 0;
+      last[a] = -2;  // never reached
+      t_next[a] = std::numeric_limits<double>::infinity();
+      t_delta[a] = 0;
+    }
+  }
+
+  const PreparedRay prepared(ray);
+  detail::Mailbox mailbox;
+  const double t_end = t1 + margin_t;
+  while (true) {
+    const std::uint32_t begin = m_offsets[std::size_t(c)], end = m_offsets[std::size_t(c) + 1];
+    recorder.cell(std::uint64_t(c), end - begin);
+    for (std::uint32_t k = begin; k < end; ++k) {
+      const TriangleId id = m_refs[k];
+      if (mailbox.seen(id)) {
+        recorder.skip();
+        continue;
+      }
+      recorder.test();
+      if constexpr (AnyHit) {
+        float t, b0, b1, b2;
+        if (intersect_triangle(prepared, m_triangles[id], ray.tmin, ray.tmax, t, b0, b1, b2)) {
+          recorder.hit();
+          return true;
+        }
+      } else {
+        const TriangleId before = best.triangle;
+        const float before_t = best.t;
+        test_closest(prepared, m_triangles[id], id, ray.tmin, best);
+        if (best.triangle != before || best.t != before_t) recorder.hit();
+      }
+    }
+    // Leave through the nearest cell plane; on exact ties x, then y, then z.
+    const int axis = t_next[0] <= t_next[1] ? (t_next[0] <= t_next[2] ? 0 : 2) : (t_next[1] <= t_next[2] ? 1 : 2);
+    const double t_exit = t_next[axis];
+    if constexpr (!AnyHit && !Whole) {
+      if (best.valid() && double(best.t) + margin_t < t_exit) return true;
+    }
+    if (t_exit > t_end || step[axis] == 0) break;  // step 0: no plane left to cross
+    cell[axis] += step[axis];
+    if (cell[axis] == last[axis]) break;
+    c += stride[axis];
+    t_next[axis] += t_delta[axis];
+  }
+  return best.valid();
+}
+
+template <class Recorder>
+std::optional<Hit> UniformGrid::closest_hit(const Ray& ray, Recorder& recorder) const {
+  Hit best;
+  best.t = ray.tmax;
+  if (!traverse<GridWalk::closest>(ray, best, recorder)) return std::nullopt;
+  return best;
+}
+
+template <class Recorder>
+bool UniformGrid::any_hit(const Ray& ray, Recorder& recorder) const {
+  Hit unused;
+  return traverse<GridWalk::any>(ray, unused, recorder);
+}
+
+template <class Recorder>
+std::optional<Hit> UniformGrid::walk_whole(const Ray& ray, Recorder& recorder) const {
+  Hit best;
+  best.t = ray.tmax;
+  if (!traverse<GridWalk::whole>(ray, best, recorder)) return std::nullopt;
+  return best;
+}
+
+}  // namespace kappa
