@@ -11,6 +11,7 @@
 #include "error.h"
 #include "options.h"
 #include "bench_command.h"
+#include "cast_command.h"
 #include "render_command.h"
 #include "version.h"
 
@@ -81,6 +82,25 @@ void add_bench_options(CLI::App& bench, BenchOptions& o) {
       ->capture_default_str();
 }
 
+void add_cast_options(CLI::App& cast, CastOptions& o) {
+  cast.add_option("scene", o.scene, "scene.json or .obj file")->required();
+  cast.add_option("--rays", o.rays, "ray distribution")
+      ->check(CLI::IsMember({"lines", "segments", "camera", "bounce", "shadow"}))
+      ->capture_default_str();
+  cast.add_option("--n", o.n, "rays to cast")->check(CLI::Range(std::size_t(1), std::size_t(1) << 30))->capture_default_str();
+  cast.add_option("--accel", o.accel, "accelerator (per-cell statistics need grid)")
+      ->check(CLI::IsMember(accelerator_names()))
+      ->capture_default_str();
+  cast.add_option("--grid-res", o.grid_res, "grid resolution: auto, N or NxNxN")->capture_default_str();
+  cast.add_option("--grid-density", o.grid_density, "cells per triangle for --grid-res auto")->check(CLI::Range(1e-6, 1e6));
+  cast.add_option("--seed", o.seed, "random seed")->capture_default_str();
+  cast.add_option("--length", o.length, "segment length for --rays segments (default: two mean cell widths)")
+      ->check(CLI::PositiveNumber);
+  cast.add_option("--threads", o.threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+  cast.add_option("--report", o.report, "write the JSON report here");
+  cast.add_flag("-q,--quiet", o.quiet, "no table on stdout");
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
@@ -96,6 +116,9 @@ int run_cli(int argc, char** argv) {
   BenchOptions bench_options;
   CLI::App* bench = app.add_subcommand("bench", "time every accelerator on the same rays (Mrays/s)");
   add_bench_options(*bench, bench_options);
+  CastOptions cast_options;
+  CLI::App* cast = app.add_subcommand("cast", "cast synthetic or renderer rays with statistics on (kappa, p_tot, ...)");
+  add_cast_options(*cast, cast_options);
 
   try {
     app.parse(argc, argv);
@@ -114,6 +137,7 @@ int run_cli(int argc, char** argv) {
   try {
     if (render->parsed()) return run_render(render_options);
     if (bench->parsed()) return run_bench(bench_options);
+    if (cast->parsed()) return run_cast(cast_options);
   } catch (const std::invalid_argument& e) {  // options an accelerator refuses
     std::fprintf(stderr, "kappa: error: %s\n", printable_line(e.what()).c_str());
     return 2;
