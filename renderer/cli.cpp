@@ -52,7 +52,11 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
   render.add_option("--height", o.height, "film height (overrides the scene)")->check(CLI::Range(1, 1 << 15));
   render.add_option("--out", o.out, "output EXR (default out/<scene name>.exr)");
   render.add_option("--aov", o.aov, "extra EXR channels: comma list of albedo, normal, depth");
-  render.add_flag("-q,--quiet", o.quiet, "no progress bar and no summary line");
+  render.add_flag("-q,--quiet", o.quiet, "no progress bar, summary line or statistics table");
+  render.add_option("--stats", o.stats, "count cells, tests and hits per ray class (grid only)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  render.add_option("--report", o.report, "write the per-frame JSON report (stats/README.md) here");
 }
 
 void add_bench_options(CLI::App& bench, BenchOptions& o) {

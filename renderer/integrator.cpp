@@ -9,7 +9,9 @@
 #include <numbers>
 #include <optional>
 
+#include "accel/grid.h"
 #include "camera.h"
+#include "queries.h"
 #include "interaction.h"
 #include "lights.h"
 #include "sampling.h"
@@ -28,19 +30,20 @@ struct FirstHit {
 
 class PathTracer {
  public:
-  PathTracer(const Scene& scene, const Accelerator& accel, const RenderSettings& settings)
-      : m_scene(scene), m_accel(accel), m_lights(scene), m_settings(settings) {}
+  PathTracer(const Scene& scene, const RenderSettings& settings)
+      : m_scene(scene), m_lights(scene), m_settings(settings) {}
 
-  /// Radiance arriving along `ray`; counts every accelerator query in `rays`.
-  Vec3f radiance(Ray ray, Rng& rng, FirstHit& first, std::uint64_t& rays) const {
+  /// Radiance arriving along `ray`, asking every visibility query through
+  /// `q` (PlainQueries or CountingQueries, chosen once per frame).
+  template <class Queries>
+  Vec3f radiance(Ray ray, Rng& rng, FirstHit& first, Queries& q) const {
     Vec3f L{0, 0, 0};
     Vec3f beta{1, 1, 1};
     float prev_bsdf_pdf = 0;  // solid-angle pdf of the direction that led here
     Vec3f prev_normal;        // oriented normal at the previous vertex
 
     for (int depth = 0;; ++depth) {
-      ++rays;
-      const std::optional<Hit> hit = m_accel.closest_hit(ray);
+      const std::optional<Hit> hit = q.closest(ray, depth);
       if (!hit) {
         if (depth == 0) {
           L += beta * m_scene.environment;
@@ -77,7 +80,7 @@ class PathTracer {
       if (mat.albedo == Vec3f{0, 0, 0}) break;  // black: nothing more to gather
 
       const Vec3f f = mat.albedo * std::numbers::inv_pi_v<float>;  // Lambertian BSDF
-      if (!m_lights.empty()) L += beta * direct_light(sp, n, f, rng, rays);
+      if (!m_lights.empty()) L += beta * direct_light(sp, n, f, rng, q);
 
       // Continue the path by sampling the BSDF (cosine-weighted hemisphere).
       const Vec3f local = sample_cosine_hemisphere(rng.uniform(), rng.uniform());
@@ -100,7 +103,8 @@ class PathTracer {
 
  private:
   /// One light sample with its MIS weight against BSDF sampling.
-  Vec3f direct_light(const SurfacePoint& sp, const Vec3f& n, const Vec3f& f, Rng& rng, std::uint64_t& rays) const {
+  template <class Queries>
+  Vec3f direct_light(const SurfacePoint& sp, const Vec3f& n, const Vec3f& f, Rng& rng, Queries& q) const {
     const std::size_t light = m_lights.choose(rng.uniform_double());
     const float u1 = rng.uniform(), u2 = rng.uniform();
     if (light == m_lights.environment_index()) {
@@ -111,8 +115,7 @@ class PathTracer {
       if (!(dir_pdf > 0.0f)) return {};
       const Vec3f wi = Frame(n).to_world(local);
       const float light_pdf = m_lights.pmf_environment() * dir_pdf;
-      ++rays;
-      if (m_accel.any_hit(Ray{offset_ray_origin(sp, wi), wi})) return {};
+      if (q.shadow(Ray{offset_ray_origin(sp, wi), wi})) return {};
       const float weight = power_heuristic(light_pdf, dir_pdf);
       return f * m_scene.environment * (local.z * weight / light_pdf);
     }
@@ -137,15 +140,13 @@ class PathTracer {
     const Vec3f d = to - from;
     const float len = length(d);
     if (!(len > 0.0f)) return {};
-    ++rays;
-    if (m_accel.any_hit(Ray{from, d / len, 0.0f, len * (1.0f - kShadowEpsilon)})) return {};
+    if (q.shadow(Ray{from, d / len, 0.0f, len * (1.0f - kShadowEpsilon)})) return {};
     const Vec3f Le = m_scene.materials[m_scene.material_of[id]].emission;
     const float weight = power_heuristic(light_pdf, cosine_hemisphere_pdf(cos_s));
     return f * Le * (cos_s * weight / light_pdf);
   }
 
   const Scene& m_scene;
-  const Accelerator& m_accel;
   Lights m_lights;
   const RenderSettings& m_settings;
 };
@@ -154,17 +155,18 @@ bool finite(const Vec3f& v) { return std::isfinite(v.x) && std::isfinite(v.y) &&
 
 }  // namespace
 
-RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSettings& settings, Film& film,
-                    const ProgressCallback& progress) {
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+/// The tile loop, for one choice of queries. `make_queries` gives a thread
+/// its Queries object for a tile.
+template <class MakeQueries>
+RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Film& film, const ProgressCallback& progress,
+                          MakeQueries&& make_queries) {
   const Camera camera(scene.camera, film.width, film.height);
-  const PathTracer tracer(scene, accel, settings);
+  const PathTracer tracer(scene, settings);
   const int tiles_x = (film.width + kTileSize - 1) / kTileSize;
   const int tiles_y = (film.height + kTileSize - 1) / kTileSize;
   const std::size_t tile_count = std::size_t(tiles_x) * std::size_t(tiles_y);
-
-  std::optional<tbb::global_control> limit;
-  if (settings.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(settings.threads));
 
   struct Counters {
     std::uint64_t rays = 0, rejected = 0;
@@ -175,6 +177,7 @@ RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSe
 
   tbb::parallel_for(std::size_t(0), tile_count, [&](std::size_t tile) {
     Counters& local = counters.local();
+    auto queries = make_queries();
     const int x0 = int(tile % std::size_t(tiles_x)) * kTileSize;
     const int y0 = int(tile / std::size_t(tiles_x)) * kTileSize;
     for (int y = y0; y < std::min(y0 + kTileSize, film.height); ++y) {
@@ -186,7 +189,7 @@ RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSe
           Rng rng(settings.seed, pixel, std::uint64_t(s));
           const float fx = rng.uniform(), fy = rng.uniform();
           FirstHit first;
-          Vec3f L = tracer.radiance(camera.generate_ray(float(x) + fx, float(y) + fy), rng, first, local.rays);
+          Vec3f L = tracer.radiance(camera.generate_ray(float(x) + fx, float(y) + fy), rng, first, queries);
           if (!finite(L)) {
             ++local.rejected;
             L = {0, 0, 0};
@@ -210,6 +213,7 @@ RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSe
         if (!film.depth.empty()) film.depth[pixel] = hits > 0 ? float(depth / hits) : INFINITY;
       }
     }
+    local.rays += queries.rays;
     const std::size_t done = tiles_done.fetch_add(1, std::memory_order_relaxed) + 1;
     if (progress) progress(done, tile_count);
   });
@@ -219,6 +223,38 @@ RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSe
     result.rays += c.rays;
     result.rejected_samples += c.rejected;
   });
+  return result;
+}
+
+}  // namespace
+
+RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSettings& settings, Film& film,
+                    const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<tbb::global_control> limit;
+  if (settings.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(settings.threads));
+
+  RenderResult result;
+  const auto* grid = dynamic_cast<const UniformGrid*>(&accel);
+  if (settings.stats && grid) {
+    // Per-cell arrays per class and per thread must fit beside the grid in
+    // --grid-max-bytes; otherwise only per-class totals are kept.
+    const std::uint64_t cells = grid->info().resolution.cells();
+    const std::uint64_t threads = std::uint64_t(tbb::this_task_arena::max_concurrency());
+    const std::uint64_t need = cells * 3 * sizeof(std::uint64_t) * kRenderClasses * threads;
+    const bool per_cell = grid->info().bytes + need <= settings.stats_max_bytes;
+    tbb::enumerable_thread_specific<RenderCounters> per_thread([&] { return RenderCounters(per_cell ? cells : 0); });
+    result = render_tiles(scene, settings, film, progress,
+                          [&] { return CountingQueries(*grid, per_thread.local()); });
+    auto merged = std::make_shared<RenderCounters>(per_cell ? cells : 0);
+    per_thread.combine_each([&](const RenderCounters& c) { merged->merge(c); });
+    result.counters = merged;
+    if (!per_cell)
+      result.stats_note = "per-cell statistics refused: " + std::to_string(need >> 20) +
+                          " MiB of counters would exceed --grid-max-bytes; per-class totals only";
+  } else {
+    result = render_tiles(scene, settings, film, progress, [&] { return PlainQueries{accel}; });
+  }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -6,8 +6,11 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <string>
 
 #include "accel/accel.h"
+#include "stats/render_counters.h"
 #include "film.h"
 #include "scene.h"
 
@@ -20,10 +23,14 @@ struct RenderSettings {
   std::uint64_t seed = 0;
   int threads = 0;          ///< 0 = all cores
   AovSelection aov;
+  bool stats = false;       ///< per-class counters (grid only), chosen once per frame
+  std::uint64_t stats_max_bytes = std::uint64_t(1) << 32;  ///< budget for per-cell counters plus the grid
 };
 
 struct RenderResult {
   double seconds = 0;
+  std::shared_ptr<const RenderCounters> counters;  ///< merged per-class counters when stats were on
+  std::string stats_note;                          ///< why per-cell statistics were refused, if they were
   std::uint64_t rays = 0;            ///< every accelerator query (closest and any hit)
   std::uint64_t rejected_samples = 0;  ///< non-finite radiance samples, replaced by 0
 };

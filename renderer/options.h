@@ -22,6 +22,8 @@ struct RenderOptions {
   std::string out;              ///< default out/<scene name>.exr
   std::string aov;              ///< comma list of albedo, normal, depth
   bool quiet = false;
+  std::string stats = "on";     ///< per-class counters during the render (grid only): on | off
+  std::string report;           ///< per-frame JSON report path
 
   std::string to_string() const;
 };

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <optional>
 #include <cstdio>
+#include <fstream>
 #include <sstream>
 
 #include "accel/accel.h"
@@ -16,6 +17,7 @@
 #include "exr_output.h"
 #include "integrator.h"
 #include "progress.h"
+#include "render_report.h"
 #include "scene_loader.h"
 #include "version.h"
 
@@ -73,9 +75,11 @@ int run_render(const RenderOptions& options) {
   if (scene.camera_framed)  // frame again for the film's final aspect ratio
     scene.camera = framing_camera(scene.bounds(), scene.camera.vfov_deg, float(scene.width) / float(scene.height));
 
-  // Claim the output before rendering: an unwritable path fails now, not
+  // Claim the outputs before rendering: an unwritable path fails now, not
   // after an hour of work.
   AtomicOutput output(output_path(options, scene));
+  std::unique_ptr<AtomicOutput> report_out;
+  if (!options.report.empty()) report_out = std::make_unique<AtomicOutput>(options.report);
 
   // --threads limits the accelerator build as well as the render.
   std::optional<tbb::global_control> thread_limit;
@@ -97,6 +101,8 @@ int run_render(const RenderOptions& options) {
   settings.seed = options.seed;
   settings.threads = options.threads;
   settings.aov = aov;
+  settings.stats = options.stats == "on";
+  settings.stats_max_bytes = options.grid_max_bytes > 0 ? options.grid_max_bytes : default_grid_max_bytes();
   const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
 
   Film film(scene.width, scene.height, aov);
@@ -124,7 +130,16 @@ int run_render(const RenderOptions& options) {
       {"kappa:rays", std::to_string(result.rays)},
   };
   write_exr(output.temp_path(), film, metadata);
+  const nlohmann::ordered_json report =
+      render_report(scene, *accel, FrameFacts{scene.width, scene.height, options.spp, threads, options.seed}, result);
+  if (report_out) {
+    std::ofstream out(report_out->temp_path());
+    out << report.dump(2) << "\n";
+    if (!out) throw InputError(options.report + ": cannot write");
+  }
   output.commit();
+  if (report_out) report_out->commit();
+  if (!result.stats_note.empty()) std::fprintf(stderr, "kappa: warning: %s\n", result.stats_note.c_str());
 
   if (!options.quiet) {
     if (const auto* grid = dynamic_cast<const UniformGrid*>(accel.get())) {
@@ -138,6 +153,8 @@ int run_render(const RenderOptions& options) {
                  scene.name.c_str(), scene.width, scene.height, options.spp, std::string(accel->name()).c_str(), threads,
                  result.seconds, static_cast<unsigned long long>(result.rays),
                  result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0, output.target().c_str());
+    std::fflush(stderr);
+    print_report_table(report);
   }
   return 0;
 }

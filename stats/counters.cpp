@@ -13,7 +13,7 @@ ClassTotals& ClassTotals::operator+=(const ClassTotals& o) {
 }
 
 void CellCounters::merge(const CellCounters& other) {
-  for (std::size_t i = 0; i < visits.size(); ++i) {
+  for (std::size_t i = 0; i < visits.size() && i < other.visits.size(); ++i) {
     visits[i] += other.visits[i];
     tests_in[i] += other.tests_in[i];
     hits_in[i] += other.hits_in[i];

@@ -24,21 +24,26 @@ struct ClassTotals {
 
 class CellCounters {
  public:
+  /// `cells` = 0 keeps totals only (per-cell arrays refused for memory).
   explicit CellCounters(std::uint64_t cells) : visits(cells, 0), tests_in(cells, 0), hits_in(cells, 0) {}
+
+  bool per_cell() const { return !visits.empty(); }
 
   // The Recorder interface.
   void cell(std::uint64_t c, std::uint32_t theta) {
-    ++visits[c];
+    if (per_cell()) ++visits[c];
     m_current = c;
     ++totals.cells;
     totals.refs += theta;
   }
   void test() {
-    ++tests_in[m_current];
+    if (per_cell()) ++tests_in[m_current];
     ++totals.tests;
   }
   void skip() { ++totals.mailbox_skips; }
-  void hit() { ++hits_in[m_current]; }
+  void hit() {
+    if (per_cell()) ++hits_in[m_current];
+  }
 
   /// Adds `other` into this (the per-thread merge).
   void merge(const CellCounters& other);

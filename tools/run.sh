@@ -6,5 +6,6 @@ cd "$(dirname "$0")/.."
 tools/setup.sh
 tools/build.sh >/dev/null
 # 400 spp take about a minute on 2 cores (grid accelerator).
-# The output goes to the default path, out/cornell-box.exr (out/ is created).
-build/kappa render assets/cornell-box/scene.json --spp 400 "$@"
+# The image goes to the default path, out/cornell-box.exr (out/ is created),
+# the per-frame cost report to out/cornell-box.json.
+build/kappa render assets/cornell-box/scene.json --spp 400 --report out/cornell-box.json "$@"

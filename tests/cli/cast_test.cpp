@@ -77,3 +77,30 @@ TEST(Cast, BadOptionsAreRefused) {
 
 }  // namespace
 }  // namespace kappa
+
+namespace kappa {
+namespace {
+
+TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
+  test::TempDir tmp;
+  const auto r = test::run_kappa({"render", cornell(), "--spp", "2", "--width", "24", "--height", "24", "--out",
+                                  (tmp / "x.exr").string(), "--report", (tmp / "x.json").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.std_err;
+  const auto j = nlohmann::json::parse(test::read_file(tmp / "x.json"));
+  EXPECT_EQ(j.at("render").at("width"), 24);
+  EXPECT_EQ(j.at("accel"), "grid");
+  for (const char* cls : {"camera", "shadow", "bounce1", "bounce2", "bounce3+", "all"})
+    EXPECT_TRUE(j.at("rays").at(cls).at("kappa").is_number()) << cls;
+  EXPECT_TRUE(j.at("cost").is_null());
+}
+
+TEST(RenderReport, UnwritableReportPathIsRefusedBeforeRendering) {
+  test::TempDir tmp;
+  const auto r = test::run_kappa({"render", cornell(), "--spp", "1", "--out", (tmp / "x.exr").string(), "--report",
+                                  (tmp / "missing" / "x.json").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(tmp / "x.exr"));
+}
+
+}  // namespace
+}  // namespace kappa

@@ -85,6 +85,7 @@ std::vector<BadCase> bad_cases() {
       bad_flags("ThreadsZero", {"--threads", "0"}),
       bad_flags("UnknownAccel", {"--accel", "nosuch"}),
       bad_flags("UnknownAov", {"--aov", "bogus"}),
+      bad_flags("StatsMaybe", {"--stats", "maybe"}),
       bad_flags("GridResZero", {"--grid-res", "0"}),
       bad_flags("GridResMalformed", {"--grid-res", "64x32"}),
       bad_flags("GridResNotANumber", {"--grid-res", "big"}),

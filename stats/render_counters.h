@@ -1,0 +1,47 @@
+// The ray classes of a path-traced frame and their counters.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "counters.h"
+
+namespace kappa {
+
+/// camera, shadow (next-event estimation), bounce1, bounce2, bounce3+.
+inline constexpr std::size_t kRenderClasses = 5;
+inline constexpr std::array<const char*, kRenderClasses> kRenderClassNames = {"camera", "shadow", "bounce1", "bounce2",
+                                                                              "bounce3+"};
+enum RenderClass : std::size_t { kCamera = 0, kShadow = 1, kBounce1 = 2, kBounce2 = 3, kBounce3Plus = 4 };
+
+/// The class of a closest-hit query at path depth `depth` (0 = camera ray).
+inline RenderClass class_of_depth(int depth) {
+  return depth == 0 ? kCamera : depth == 1 ? kBounce1 : depth == 2 ? kBounce2 : kBounce3Plus;
+}
+
+/// One thread's counters for a frame.
+struct RenderCounters {
+  explicit RenderCounters(std::uint64_t cells_per_class)
+      : classes{CellCounters(cells_per_class), CellCounters(cells_per_class), CellCounters(cells_per_class),
+                CellCounters(cells_per_class), CellCounters(cells_per_class)} {}
+
+  std::array<CellCounters, kRenderClasses> classes;
+  /// Sum over rays of predicted cells (1 + sum_a |v_a|/l_a) in 1/1024 units:
+  /// integer, so the merged total does not depend on thread scheduling.
+  std::array<std::uint64_t, kRenderClasses> predicted_fixed{};
+  /// Sampled traversal time: every 64th query of a class is timed and counts 64 times.
+  std::array<double, kRenderClasses> sampled_seconds{};
+  std::array<std::uint64_t, kRenderClasses> queries{};
+
+  void merge(const RenderCounters& o) {
+    for (std::size_t k = 0; k < kRenderClasses; ++k) {
+      classes[k].merge(o.classes[k]);
+      predicted_fixed[k] += o.predicted_fixed[k];
+      sampled_seconds[k] += o.sampled_seconds[k];
+      queries[k] += o.queries[k];
+    }
+  }
+};
+
+}  // namespace kappa
