@@ -5,23 +5,13 @@
 
 namespace kappa {
 
-namespace {
-/// Records nothing: every call compiles away.
-struct NothingRecorded {
-  void cell(std::uint64_t, std::uint32_t) {}
-  void test() {}
-  void skip() {}
-  void hit() {}
-};
-}  // namespace
-
 std::optional<Hit> UniformGrid::closest_hit(const Ray& ray) const {
-  NothingRecorded none;
+  NoRecorder none;
   return closest_hit(ray, none);
 }
 
 bool UniformGrid::any_hit(const Ray& ray) const {
-  NothingRecorded none;
+  NoRecorder none;
   return any_hit(ray, none);
 }
 

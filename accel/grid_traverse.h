@@ -12,6 +12,15 @@
 #include "grid.h"
 
 namespace kappa {
+
+/// A recorder that records nothing: every call compiles away.
+struct NoRecorder {
+  void cell(std::uint64_t, std::uint32_t) {}
+  void test() {}
+  void skip() {}
+  void hit() {}
+};
+
 namespace detail {
 
 /// Tests each triangle at most once per ray although it may sit in many

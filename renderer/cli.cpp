@@ -11,6 +11,7 @@
 #include "error.h"
 #include "options.h"
 #include "bench_command.h"
+#include "calibrate_command.h"
 #include "cast_command.h"
 #include "render_command.h"
 #include "version.h"
@@ -57,6 +58,7 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   render.add_option("--report", o.report, "write the per-frame JSON report (stats/README.md) here");
+  render.add_option("--calibration", o.calibration, "cost model constants from kappa calibrate (default: beside the executable)");
 }
 
 void add_bench_options(CLI::App& bench, BenchOptions& o) {
@@ -105,6 +107,18 @@ void add_cast_options(CLI::App& cast, CastOptions& o) {
   cast.add_flag("-q,--quiet", o.quiet, "no table on stdout");
 }
 
+void add_calibrate_options(CLI::App& calibrate, CalibrateOptions& o) {
+  calibrate.add_option("scenes", o.scenes, "scenes to measure (default: the Cornell box and the low-res bunny)");
+  calibrate.add_option("--density", o.densities, "grid densities (cells per triangle) to measure at")
+      ->delimiter(',')
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->check(CLI::Range(1e-6, 1e6))
+      ->capture_default_str();
+  calibrate.add_option("--n", o.n, "rays per class and grid")->check(CLI::Range(std::size_t(100), std::size_t(1) << 26))->capture_default_str();
+  calibrate.add_option("--repeat", o.repeat, "timed passes (median)")->check(CLI::Range(1, 100))->capture_default_str();
+  calibrate.add_option("--out", o.out, "calibration file (default: kappa_calibration.json beside the executable)");
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
@@ -123,6 +137,9 @@ int run_cli(int argc, char** argv) {
   CastOptions cast_options;
   CLI::App* cast = app.add_subcommand("cast", "cast synthetic or renderer rays with statistics on (kappa, p_tot, ...)");
   add_cast_options(*cast, cast_options);
+  CalibrateOptions calibrate_options;
+  CLI::App* calibrate = app.add_subcommand("calibrate", "measure the cost model's T0, Ts, Th on this machine");
+  add_calibrate_options(*calibrate, calibrate_options);
 
   try {
     app.parse(argc, argv);
@@ -142,6 +159,7 @@ int run_cli(int argc, char** argv) {
     if (render->parsed()) return run_render(render_options);
     if (bench->parsed()) return run_bench(bench_options);
     if (cast->parsed()) return run_cast(cast_options);
+    if (calibrate->parsed()) return run_calibrate(calibrate_options);
   } catch (const std::invalid_argument& e) {  // options an accelerator refuses
     std::fprintf(stderr, "kappa: error: %s\n", printable_line(e.what()).c_str());
     return 2;

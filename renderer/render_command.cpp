@@ -17,6 +17,7 @@
 #include "exr_output.h"
 #include "integrator.h"
 #include "progress.h"
+#include "calibrate_command.h"
 #include "render_report.h"
 #include "scene_loader.h"
 #include "version.h"
@@ -130,8 +131,17 @@ int run_render(const RenderOptions& options) {
       {"kappa:rays", std::to_string(result.rays)},
   };
   write_exr(output.temp_path(), film, metadata);
-  const nlohmann::ordered_json report =
-      render_report(scene, *accel, FrameFacts{scene.width, scene.height, options.spp, threads, options.seed}, result);
+  std::optional<Calibration> calibration;
+  try {
+    calibration = load_calibration(options.calibration.empty() ? default_calibration_path()
+                                                               : std::filesystem::path(options.calibration));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  if (!calibration && !options.calibration.empty())
+    throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
+  const nlohmann::ordered_json report = render_report(
+      scene, *accel, FrameFacts{scene.width, scene.height, options.spp, threads, options.seed}, result, calibration);
   if (report_out) {
     std::ofstream out(report_out->temp_path());
     out << report.dump(2) << "\n";

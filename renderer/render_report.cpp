@@ -41,7 +41,7 @@ std::string cell(const nlohmann::ordered_json& v, const char* fmt) {
 }  // namespace
 
 nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& accel, const FrameFacts& frame,
-                                     const RenderResult& result) {
+                                     const RenderResult& result, const std::optional<Calibration>& calibration) {
   nlohmann::ordered_json j;
   j["schema_version"] = kReportSchemaVersion;
   j["kappa_version"] = version_string();
@@ -75,12 +75,35 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
     if (!result.stats_note.empty()) j["stats_note"] = result.stats_note;
   }
   j["rays"] = rays;
-  j["cost"] = nullptr;  // no calibration of T0, Ts, Th yet
+  j["cost"] = nullptr;  // without a calibration (kappa calibrate) there is no prediction
+  if (calibration && grid && result.counters) {
+    // Thread-seconds of traversal: eq 10 per class from its own counts, and
+    // the sampled clock of the same queries (which includes the counting).
+    double predicted = 0, measured = 0;
+    for (std::size_t k = 0; k < kRenderClasses; ++k) {
+      const ClassTotals& t = result.counters->classes[k].totals;
+      if (t.rays == 0) continue;
+      predicted += double(t.rays) * calibration->seconds_per_ray(double(t.cells) / double(t.rays),
+                                                                 double(t.refs) / double(t.rays));
+      measured += result.counters->sampled_seconds[k];
+    }
+    j["cost"] = {{"T0_ns", calibration->T0_ns},
+                 {"Ts_ns", calibration->Ts_ns},
+                 {"Th_ns", calibration->Th_ns},
+                 {"predicted_s", predicted},
+                 {"measured_s", measured},
+                 {"relative_error", measured > 0 ? nlohmann::ordered_json(predicted / measured - 1.0) : nlohmann::ordered_json()}};
+  }
   return j;
 }
 
 void print_report_table(const nlohmann::ordered_json& report) {
   if (!report.contains("rays") || report["rays"].empty()) return;
+  if (report["cost"].is_object())
+    std::printf("cost (eq 10, thread-seconds of traversal): predicted %.3f s, measured %.3f s, error %s (T0 %.1f ns, Ts %.1f ns, Th %.1f ns)\n",
+                report["cost"]["predicted_s"].get<double>(), report["cost"]["measured_s"].get<double>(),
+                cell(report["cost"]["relative_error"], "%+.3f").c_str(), report["cost"]["T0_ns"].get<double>(),
+                report["cost"]["Ts_ns"].get<double>(), report["cost"]["Th_ns"].get<double>());
   std::printf("%-9s %11s %8s %9s %8s %8s %8s %7s %7s\n", "rays", "count", "cells", "predicted", "tests", "refs",
               "p_tot", "r", "kappa");
   for (const auto& [name, c] : report["rays"].items()) {

@@ -8,6 +8,7 @@
 #include "accel/accel.h"
 #include "integrator.h"
 #include "scene.h"
+#include "stats/calibration.h"
 
 namespace kappa {
 
@@ -16,8 +17,10 @@ struct FrameFacts {
   std::uint64_t seed = 0;
 };
 
+/// The report; `cost` is filled when a calibration is given and counters ran:
+/// eq 10's predicted traversal time (thread-seconds) beside the measured one.
 nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& accel, const FrameFacts& frame,
-                                     const RenderResult& result);
+                                     const RenderResult& result, const std::optional<Calibration>& calibration = {});
 
 /// One line per ray class: count, cells per ray (measured and predicted),
 /// tests and references per ray, p_tot, r, kappa.
