@@ -58,6 +58,10 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   render.add_option("--report", o.report, "write the per-frame JSON report (stats/README.md) here");
+  render.add_option("--cell-map", o.cell_map, "per-cell p_i and Theta_i projected along an axis, to F.exr or F.png");
+  render.add_option("--cell-map-axis", o.cell_map_axis, "projection axis of the cell map")
+      ->check(CLI::IsMember({"x", "y", "z"}))
+      ->capture_default_str();
   render.add_option("--calibration", o.calibration, "cost model constants from kappa calibrate (default: beside the executable)");
 }
 

@@ -11,6 +11,7 @@ std::vector<std::string> exr_channel_names(const Film& film) {
   if (!film.albedo.empty()) names.insert(names.end(), {"albedo.R", "albedo.G", "albedo.B"});
   if (!film.normal.empty()) names.insert(names.end(), {"normal.X", "normal.Y", "normal.Z"});
   if (!film.depth.empty()) names.push_back("depth.Z");
+  if (!film.cost_cells.empty()) names.insert(names.end(), {"cost.cells", "cost.tests"});
   return names;
 }
 
@@ -26,12 +27,16 @@ void write_exr(const std::filesystem::path& path, const Film& film, const Metada
     if (!film.normal.empty())
       for (int c = 0; c < 3; ++c) *out++ = film.normal[3 * i + std::size_t(c)];
     if (!film.depth.empty()) *out++ = film.depth[i];
+    if (!film.cost_cells.empty()) {
+      *out++ = film.cost_cells[i];
+      *out++ = film.cost_tests[i];
+    }
   }
 
   OIIO::ImageSpec spec(film.width, film.height, int(nc), OIIO::TypeDesc::FLOAT);
   spec.channelnames = names;
   spec.alpha_channel = -1;
-  spec.z_channel = film.depth.empty() ? -1 : int(nc - 1);
+  spec.z_channel = film.depth.empty() ? -1 : int(film.cost_cells.empty() ? nc - 1 : nc - 3);
   spec.attribute("compression", "zip");
   for (const auto& [key, value] : metadata) {
     std::visit([&, k = key](const auto& v) { spec.attribute(k, v); }, value);

@@ -16,7 +16,7 @@ using MetadataValue = std::variant<std::string, int, float>;
 using Metadata = std::vector<std::pair<std::string, MetadataValue>>;
 
 /// Channel names in file order: R, G, B, then albedo.{R,G,B}, normal.{X,Y,Z},
-/// depth.Z for the AOVs present in the film.
+/// depth.Z, cost.cells and cost.tests for the AOVs present in the film.
 std::vector<std::string> exr_channel_names(const Film& film);
 
 /// Writes `film` to `path` directly (callers wanting atomicity pass the

@@ -12,7 +12,8 @@ struct AovSelection {
   bool albedo = false;  ///< Kd of the first hit (0 where the camera ray escapes)
   bool normal = false;  ///< geometric normal of the first hit, facing the camera
   bool depth = false;   ///< mean eye distance of the samples that hit (+inf if none did)
-  bool any() const { return albedo || normal || depth; }
+  bool cost = false;    ///< grid cells visited and triangle tests made, summed over the pixel's rays (stats on)
+  bool any() const { return albedo || normal || depth || cost; }
 };
 
 struct Film {
@@ -21,6 +22,8 @@ struct Film {
   std::vector<float> albedo;  ///< 3 per pixel, when selected
   std::vector<float> normal;  ///< 3 per pixel, when selected
   std::vector<float> depth;   ///< 1 per pixel, when selected
+  std::vector<float> cost_cells;  ///< 1 per pixel, when cost is selected
+  std::vector<float> cost_tests;  ///< 1 per pixel, when cost is selected
 
   Film(int w, int h, const AovSelection& aov)
       : width(w), height(h), rgb(std::size_t(w) * std::size_t(h) * 3) {
@@ -28,6 +31,10 @@ struct Film {
     if (aov.albedo) albedo.resize(3 * n);
     if (aov.normal) normal.resize(3 * n);
     if (aov.depth) depth.resize(n);
+    if (aov.cost) {
+      cost_cells.resize(n);
+      cost_tests.resize(n);
+    }
   }
   std::size_t pixels() const { return std::size_t(width) * std::size_t(height); }
 };

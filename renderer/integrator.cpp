@@ -185,6 +185,7 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
         const std::size_t pixel = std::size_t(y) * std::size_t(film.width) + std::size_t(x);
         double sum[3] = {0, 0, 0}, albedo[3] = {0, 0, 0}, normal[3] = {0, 0, 0}, depth = 0;
         int hits = 0;
+        const QueryWork before = film.cost_cells.empty() ? QueryWork{} : queries.work();
         for (int s = 0; s < settings.spp; ++s) {
           Rng rng(settings.seed, pixel, std::uint64_t(s));
           const float fx = rng.uniform(), fy = rng.uniform();
@@ -211,6 +212,11 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
             film.normal[3 * pixel + std::size_t(c)] = len > 0 ? float(normal[c] / len) : 0.0f;
         }
         if (!film.depth.empty()) film.depth[pixel] = hits > 0 ? float(depth / hits) : INFINITY;
+        if (!film.cost_cells.empty()) {
+          const QueryWork after = queries.work();
+          film.cost_cells[pixel] = float(after.cells - before.cells);
+          film.cost_tests[pixel] = float(after.tests - before.tests);
+        }
       }
     }
     local.rays += queries.rays;

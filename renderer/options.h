@@ -24,6 +24,8 @@ struct RenderOptions {
   bool quiet = false;
   std::string stats = "on";     ///< per-class counters during the render (grid only): on | off
   std::string report;           ///< per-frame JSON report path
+  std::string cell_map;         ///< --cell-map F.exr|png
+  std::string cell_map_axis = "y";  ///< projection axis of the cell map
   std::string calibration;      ///< T0/Ts/Th file (default: kappa_calibration.json beside the executable)
 
   std::string to_string() const;

@@ -14,9 +14,16 @@
 
 namespace kappa {
 
+/// Cumulative work of one thread's queries: what the cost AOVs difference.
+struct QueryWork {
+  std::uint64_t cells = 0, tests = 0;
+};
+
 struct PlainQueries {
   const Accelerator& accel;
   std::uint64_t rays = 0;
+
+  QueryWork work() const { return {}; }
 
   std::optional<Hit> closest(const Ray& r, int /*depth*/) {
     ++rays;
@@ -33,6 +40,15 @@ class CountingQueries {
   CountingQueries(const UniformGrid& grid, RenderCounters& counters) : m_grid(grid), m_counters(counters) {}
 
   std::uint64_t rays = 0;
+
+  QueryWork work() const {
+    QueryWork w;
+    for (const CellCounters& c : m_counters.classes) {
+      w.cells += c.totals.cells;
+      w.tests += c.totals.tests;
+    }
+    return w;
+  }
 
   std::optional<Hit> closest(const Ray& r, int depth) {
     ++rays;

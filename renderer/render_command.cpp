@@ -18,6 +18,7 @@
 #include "integrator.h"
 #include "progress.h"
 #include "calibrate_command.h"
+#include "cell_map.h"
 #include "render_report.h"
 #include "scene_loader.h"
 #include "version.h"
@@ -33,7 +34,8 @@ AovSelection parse_aovs(const std::string& list) {
     if (name == "albedo") aov.albedo = true;
     else if (name == "normal") aov.normal = true;
     else if (name == "depth") aov.depth = true;
-    else if (!name.empty()) throw InputError("--aov: unknown AOV '" + name + "' (expected albedo, normal, depth)");
+    else if (name == "cost") aov.cost = true;
+    else if (!name.empty()) throw InputError("--aov: unknown AOV '" + name + "' (expected albedo, normal, depth, cost)");
   }
   return aov;
 }
@@ -65,6 +67,13 @@ std::string RenderOptions::to_string() const {
 
 int run_render(const RenderOptions& options) {
   const AovSelection aov = parse_aovs(options.aov);
+  if (!options.cell_map.empty() && (options.stats != "on" || options.accel != "grid"))
+    throw InputError("--cell-map: needs --accel grid and --stats on");
+  if (const auto ext = std::filesystem::path(options.cell_map).extension(); !options.cell_map.empty() && ext != ".exr" &&
+                                                                            ext != ".png")
+    throw InputError("--cell-map: '" + options.cell_map + "' must end in .exr or .png");
+  if (aov.cost && (options.stats != "on" || options.accel != "grid"))
+    throw InputError("--aov cost: needs --accel grid and --stats on (it counts the grid's cells and tests)");
   if (!options.out.empty() && std::filesystem::path(options.out).extension() != ".exr")
     throw InputError("--out: '" + options.out + "' must end in .exr");
 
@@ -146,6 +155,10 @@ int run_render(const RenderOptions& options) {
     std::ofstream out(report_out->temp_path());
     out << report.dump(2) << "\n";
     if (!out) throw InputError(options.report + ": cannot write");
+  }
+  if (!options.cell_map.empty() && result.counters) {
+    const auto* grid = dynamic_cast<const UniformGrid*>(accel.get());
+    write_cell_map(options.cell_map, *grid, *result.counters, options.cell_map_axis[0] - 'x');
   }
   output.commit();
   if (report_out) report_out->commit();

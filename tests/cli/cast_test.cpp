@@ -104,3 +104,64 @@ TEST(RenderReport, UnwritableReportPathIsRefusedBeforeRendering) {
 
 }  // namespace
 }  // namespace kappa
+
+#include <OpenImageIO/imageio.h>
+
+namespace kappa {
+namespace {
+
+/// Sum of one channel of an image file.
+double channel_sum(const std::filesystem::path& file, const std::string& channel) {
+  auto in = OIIO::ImageInput::open(file.string());
+  EXPECT_TRUE(in) << file;
+  if (!in) return -1;
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> pixels(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(spec.nchannels));
+  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
+  int index = -1;
+  for (int c = 0; c < spec.nchannels; ++c)
+    if (spec.channelnames[std::size_t(c)] == channel) index = c;
+  EXPECT_GE(index, 0) << channel;
+  double sum = 0;
+  for (std::size_t i = std::size_t(index); i < pixels.size(); i += std::size_t(spec.nchannels)) sum += pixels[i];
+  return sum;
+}
+
+TEST(CostPictures, CostAovsAndCellMapAddUpToTheReport) {
+  test::TempDir tmp;
+  const auto r = test::run_kappa({"render", cornell(), "--spp", "2", "--width", "24", "--height", "24", "--aov", "cost",
+                                  "--out", (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(),
+                                  "--cell-map", (tmp / "map.exr").string(), "--cell-map-axis", "z"});
+  ASSERT_EQ(r.exit_code, 0) << r.std_err;
+  const auto j = nlohmann::json::parse(test::read_file(tmp / "x.json"));
+  const auto& all = j.at("rays").at("all");
+  const double rays = all.at("count").get<double>();
+  // Every ray's cells and tests land in exactly one pixel.
+  EXPECT_NEAR(channel_sum(tmp / "x.exr", "cost.cells"), all.at("cells_per_ray").get<double>() * rays, 0.5);
+  EXPECT_NEAR(channel_sum(tmp / "x.exr", "cost.tests"), all.at("tests_per_ray").get<double>() * rays, 0.5);
+  // The projection keeps the sums: sum of p_i = p_tot, sum of Theta_i = theta_tot.
+  EXPECT_NEAR(channel_sum(tmp / "map.exr", "p"), all.at("p_tot").get<double>(), 1e-3 * all.at("p_tot").get<double>());
+  EXPECT_NEAR(channel_sum(tmp / "map.exr", "theta"), j.at("grid").at("theta_tot").get<double>(), 1e-3);
+  // A PNG map for people.
+  const auto png = test::run_kappa({"render", cornell(), "--spp", "1", "--width", "8", "--height", "8", "--out",
+                                    (tmp / "y.exr").string(), "--cell-map", (tmp / "map.png").string()});
+  ASSERT_EQ(png.exit_code, 0) << png.std_err;
+  EXPECT_TRUE(std::filesystem::exists(tmp / "map.png"));
+}
+
+TEST(CostPictures, NeedStatisticsOnTheGrid) {
+  test::TempDir tmp;
+  for (const std::vector<std::string>& extra :
+       {std::vector<std::string>{"--aov", "cost", "--stats", "off"}, {"--aov", "cost", "--accel", "naive"},
+        {"--cell-map", (tmp / "m.exr").string(), "--stats", "off"}, {"--cell-map", (tmp / "m.tiff").string()}}) {
+    std::vector<std::string> args = {"render", cornell(), "--spp", "1", "--width", "8", "--height", "8", "--out",
+                                     (tmp / "x.exr").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = test::run_kappa(args);
+    EXPECT_EQ(r.exit_code, 2) << extra[0] << " " << extra[1];
+    EXPECT_FALSE(std::filesystem::exists(tmp / "x.exr"));
+  }
+}
+
+}  // namespace
+}  // namespace kappa
