@@ -32,7 +32,7 @@ void write_cell_map(const std::filesystem::path& file, const UniformGrid& grid, 
         ijk[u_axis] = u, ijk[v_axis] = v, ijk[axis] = k;
         const std::uint64_t c = grid.cell_index(ijk[0], ijk[1], ijk[2]);
         std::uint64_t visits = 0;
-        for (const CellCounters& cls : counters.classes) visits += cls.visits[c];
+        for (const CellCounters& cls : counters.classes) visits += cls.cells()[c].visits;
         // Image rows run top-down: the v axis points up in the picture.
         const std::size_t px = std::size_t(h - 1 - v) * std::size_t(w) + std::size_t(u);
         p[px] += rays > 0 ? double(visits) / double(rays) : 0.0;

@@ -18,7 +18,7 @@ CastMeasurement measurement(const CellCounters& counters, const std::vector<std:
   m.theta = theta;
   const std::uint64_t rays = counters.totals.rays;
   if (counters.per_cell()) {
-    m.collusion = collusion(counters.visits, theta, rays);
+    m.collusion = collusion(counters.visits(), theta, rays);
   } else {  // totals only: what needs p_i stays undefined
     m.collusion.N_c = theta.size();
     m.collusion.N_r = rays;

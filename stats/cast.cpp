@@ -53,7 +53,7 @@ CastMeasurement cast_with_counters(const UniformGrid& grid, std::span<const Ray>
   m.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   m.theta = occupancies(grid);
-  m.collusion = collusion(m.counters.visits, m.theta, m.counters.totals.rays);
+  m.collusion = collusion(m.counters.visits(), m.theta, m.counters.totals.rays);
 
   // Predicted cells per ray from each ray's own length inside the grid box
   // (serial: a double sum in a fixed order).

@@ -13,12 +13,18 @@ ClassTotals& ClassTotals::operator+=(const ClassTotals& o) {
 }
 
 void CellCounters::merge(const CellCounters& other) {
-  for (std::size_t i = 0; i < visits.size() && i < other.visits.size(); ++i) {
-    visits[i] += other.visits[i];
-    tests_in[i] += other.tests_in[i];
-    hits_in[i] += other.hits_in[i];
+  for (std::size_t i = 0; i < m_cells.size() && i < other.m_cells.size(); ++i) {
+    m_cells[i].visits += other.m_cells[i].visits;
+    m_cells[i].tests += other.m_cells[i].tests;
+    m_cells[i].hits += other.m_cells[i].hits;
   }
   totals += other.totals;
+}
+
+std::vector<std::uint64_t> CellCounters::visits() const {
+  std::vector<std::uint64_t> v(m_cells.size());
+  for (std::size_t i = 0; i < m_cells.size(); ++i) v[i] = m_cells[i].visits;
+  return v;
 }
 
 }  // namespace kappa

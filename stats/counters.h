@@ -22,39 +22,51 @@ struct ClassTotals {
   ClassTotals& operator+=(const ClassTotals& o);
 };
 
+/// One cell's counts for one class. Kept together so that a visit touches
+/// one cache line, not three arrays: on grids of millions of cells the
+/// counters' cache misses are most of what statistics cost.
+struct CellCount {
+  std::uint64_t visits = 0;  ///< rays that visited the cell
+  std::uint64_t tests = 0;   ///< triangle tests made in it
+  std::uint64_t hits = 0;    ///< tests in it that found a (new closest) hit
+  bool operator==(const CellCount&) const = default;
+};
+
 class CellCounters {
  public:
   /// `cells` = 0 keeps totals only (per-cell arrays refused for memory).
-  explicit CellCounters(std::uint64_t cells) : visits(cells, 0), tests_in(cells, 0), hits_in(cells, 0) {}
+  explicit CellCounters(std::uint64_t cells) : m_cells(cells) {}
 
-  bool per_cell() const { return !visits.empty(); }
+  bool per_cell() const { return !m_cells.empty(); }
 
   // The Recorder interface.
   void cell(std::uint64_t c, std::uint32_t theta) {
-    if (per_cell()) ++visits[c];
-    m_current = c;
+    m_current = per_cell() ? &m_cells[c] : nullptr;
+    if (m_current) ++m_current->visits;
     ++totals.cells;
     totals.refs += theta;
   }
   void test() {
-    if (per_cell()) ++tests_in[m_current];
+    if (m_current) ++m_current->tests;
     ++totals.tests;
   }
   void skip() { ++totals.mailbox_skips; }
   void hit() {
-    if (per_cell()) ++hits_in[m_current];
+    if (m_current) ++m_current->hits;
   }
 
   /// Adds `other` into this (the per-thread merge).
   void merge(const CellCounters& other);
 
-  std::vector<std::uint64_t> visits;    ///< rays that visited each cell
-  std::vector<std::uint64_t> tests_in;  ///< triangle tests made in each cell
-  std::vector<std::uint64_t> hits_in;   ///< tests in each cell that found a (new closest) hit
+  const std::vector<CellCount>& cells() const { return m_cells; }
+  /// Visits per cell (p_i * rays), in cell order.
+  std::vector<std::uint64_t> visits() const;
+
   ClassTotals totals;
 
  private:
-  std::uint64_t m_current = 0;
+  std::vector<CellCount> m_cells;
+  CellCount* m_current = nullptr;
 };
 
 }  // namespace kappa
