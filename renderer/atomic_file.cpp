@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <fstream>
 #include <mutex>
 
 #include "error.h"
@@ -90,6 +91,16 @@ AtomicOutput::AtomicOutput(const std::filesystem::path& target) : m_target(targe
 AtomicOutput::~AtomicOutput() {
   if (!m_committed) ::unlink(m_temp.c_str());
   if (m_slot >= 0) release_slot(m_slot);
+}
+
+void write_and_commit(AtomicOutput& output, const std::string& text) {
+  {
+    std::ofstream out(output.temp_path(), std::ios::binary);
+    out << text;
+    out.flush();
+    if (!out) fail(output.target(), 0, "cannot write");
+  }
+  output.commit();
 }
 
 void AtomicOutput::commit() {

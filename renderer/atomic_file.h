@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 namespace kappa {
 
@@ -28,5 +29,8 @@ class AtomicOutput {
   int m_slot = -1;  ///< entry in the signal handler's cleanup table
   bool m_committed = false;
 };
+
+/// Writes `text` to the output's temporary and commits it (throws InputError).
+void write_and_commit(AtomicOutput& output, const std::string& text);
 
 }  // namespace kappa

@@ -181,12 +181,7 @@ int run_bench(const BenchOptions& options) {
                               {"ratio_to_embree", e > 0 ? nlohmann::ordered_json(r.median / e) : nlohmann::ordered_json()},
                               {"hits", r.hits}});
     }
-    {
-      std::ofstream out(json_out->temp_path());
-      out << j.dump(2) << "\n";
-      if (!out) throw InputError(options.json + ": cannot write");
-    }
-    json_out->commit();
+    write_and_commit(*json_out, j.dump(2) + "\n");
   }
   return 0;
 }

@@ -100,12 +100,7 @@ int run_calibrate(const CalibrateOptions& options) {
   cal.machine = machine_name();
   std::printf("T0 %.2f ns, Ts %.2f ns, Th %.2f ns (%zu measurements, rms relative error %.1f %%) -> %s\n", cal.T0_ns,
               cal.Ts_ns, cal.Th_ns, cal.samples, 100 * cal.rms_relative_error, out_path.c_str());
-  {
-    std::ofstream file(out.temp_path());
-    file << to_json(cal, samples).dump(2) << "\n";
-    if (!file) throw InputError(out_path.string() + ": cannot write");
-  }
-  out.commit();
+  write_and_commit(out, to_json(cal, samples).dump(2) + "\n");
   return 0;
 }
 

@@ -129,12 +129,7 @@ int run_cast(const CastOptions& options) {
                      ray_section["hit_fraction"].dump().c_str());
   }
   if (report_out) {
-    {
-      std::ofstream out(report_out->temp_path());
-      out << report.dump(2) << "\n";
-      if (!out) throw InputError(options.report + ": cannot write");
-    }
-    report_out->commit();
+    write_and_commit(*report_out, report.dump(2) + "\n");
   }
   return 0;
 }

@@ -25,6 +25,10 @@ std::string located(const std::filesystem::path& file, std::size_t line, const s
 /// become \xNN and line breaks become spaces.
 std::string printable_line(const std::string& message);
 
+/// The whole content of an input file; `kind` names what it should be in
+/// the error when it is a directory ("an OBJ file", "a scene file").
+std::string read_input_file(const std::filesystem::path& file, const char* kind);
+
 /// Warnings gathered while loading, printed by the caller (and inspected by tests).
 using Warnings = std::vector<std::string>;
 

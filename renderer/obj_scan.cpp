@@ -11,17 +11,6 @@
 namespace kappa {
 namespace {
 
-std::string read_file_bytes(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) fail(file, 0, "file not found");
-  if (std::filesystem::is_directory(file, ec)) fail(file, 0, "is a directory, not an OBJ file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail(file, 0, "cannot open for reading");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 /// Strict number: the whole token must be a decimal floating-point literal
 /// (an optional leading '+' is allowed, as OBJ writers emit it).
 enum class NumberStatus { ok, invalid, out_of_range };
@@ -283,7 +272,7 @@ std::vector<std::string_view> split_ws(std::string_view s) {
 }
 
 ObjScan scan_obj(const std::filesystem::path& file, Warnings& warnings) {
-  const std::string bytes = read_file_bytes(file);
+  const std::string bytes = read_input_file(file, "an OBJ file");
   return Scanner(file, warnings).run(bytes);
 }
 

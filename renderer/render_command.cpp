@@ -151,17 +151,13 @@ int run_render(const RenderOptions& options) {
     throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
   const nlohmann::ordered_json report = render_report(
       scene, *accel, FrameFacts{scene.width, scene.height, options.spp, threads, options.seed}, result, calibration);
-  if (report_out) {
-    std::ofstream out(report_out->temp_path());
-    out << report.dump(2) << "\n";
-    if (!out) throw InputError(options.report + ": cannot write");
-  }
+
   if (!options.cell_map.empty() && result.counters) {
     const auto* grid = dynamic_cast<const UniformGrid*>(accel.get());
     write_cell_map(options.cell_map, *grid, *result.counters, options.cell_map_axis[0] - 'x');
   }
   output.commit();
-  if (report_out) report_out->commit();
+  if (report_out) write_and_commit(*report_out, report.dump(2) + "\n");
   if (!result.stats_note.empty()) std::fprintf(stderr, "kappa: warning: %s\n", result.stats_note.c_str());
 
   if (!options.quiet) {

@@ -15,17 +15,6 @@ using nlohmann::json;
 
 constexpr int kMaxFilmSide = 1 << 15;
 
-std::string read_text(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) fail(file, 0, "file not found");
-  if (std::filesystem::is_directory(file, ec)) fail(file, 0, "is a directory, not a scene file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail(file, 0, "cannot open for reading");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 /// Line and column (1-based) of a byte offset.
 std::pair<std::size_t, std::size_t> line_column(const std::string& text, std::size_t byte) {
   std::size_t line = 1, col = 1;
@@ -111,7 +100,7 @@ void check_camera(const std::filesystem::path& file, const CameraSpec& c) {
 }
 
 Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings) {
-  const std::string text = read_text(file);
+  const std::string text = read_input_file(file, "a scene file");
   const json root = parse_json(file, text);
   const FieldReader field(file);
   if (!root.is_object()) fail(file, 0, "the scene must be a JSON object");
