@@ -57,7 +57,7 @@ struct GridInfo {
   std::uint64_t theta_tot = 0;   ///< total occupancy = total multiplicity M (eq 13)
   std::uint32_t max_occupancy = 0;  ///< largest Theta_i
   std::uint64_t empty_cells = 0;
-  std::uint64_t bytes = 0;  ///< cell offsets + triangle index array
+  std::uint64_t bytes = 0;  ///< cell offsets + triangle index array + occupancy bits
   double build_s = 0;
 };
 
@@ -107,6 +107,9 @@ class UniformGrid final : public Accelerator {
   Vec3d m_inv_cell;                 ///< 1 / cell size per axis
   std::vector<std::uint32_t> m_offsets;  ///< N_c + 1 entries into m_refs
   std::vector<TriangleId> m_refs;       ///< triangle ids, cell by cell
+  /// One bit per cell, set if it holds any triangle: 1/32 of the offsets'
+  /// size, so it stays in cache and empty cells cost no offset loads.
+  std::vector<std::uint64_t> m_occupied;
 };
 
 }  // namespace kappa

@@ -136,7 +136,10 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
                                 mib(options.max_bytes) + ") or 2^32 - 1 references");
   m_offsets[cells] = std::uint32_t(total);
   m_info.theta_tot = total;
-  m_info.bytes = bytes;
+  m_occupied.assign((cells + 63) / 64, 0);
+  for (std::uint64_t c = 0; c < cells; ++c)
+    if (m_offsets[c] != m_offsets[c + 1]) m_occupied[c >> 6] |= std::uint64_t(1) << (c & 63);
+  m_info.bytes = bytes + m_occupied.size() * sizeof(std::uint64_t);
 
   // Pass 2: fill. Threads race for slots within a cell, so each cell is
   // sorted afterwards: the layout (and anything counted over it) does not

@@ -121,7 +121,8 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
   detail::Mailbox mailbox;
   const double t_end = t1 + margin_t;
   while (true) {
-    const std::uint32_t begin = m_offsets[std::size_t(c)], end = m_offsets[std::size_t(c) + 1];
+    const bool occupied = (m_occupied[std::size_t(c) >> 6] >> (std::size_t(c) & 63)) & 1;
+    const std::uint32_t begin = occupied ? m_offsets[std::size_t(c)] : 0, end = occupied ? m_offsets[std::size_t(c) + 1] : 0;
     recorder.cell(std::uint64_t(c), end - begin);
     for (std::uint32_t k = begin; k < end; ++k) {
       const TriangleId id = m_refs[k];
