@@ -120,6 +120,10 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
   const PreparedRay prepared(ray);
   detail::Mailbox mailbox;
   const double t_end = t1 + margin_t;
+  // The walk's state in scalars, so that it stays in registers.
+  double tx = t_next[0], ty = t_next[1], tz = t_next[2];
+  const double dx = t_delta[0], dy = t_delta[1], dz = t_delta[2];
+  int ix = cell[0], iy = cell[1], iz = cell[2];
   while (true) {
     const bool occupied = (m_occupied[std::size_t(c) >> 6] >> (std::size_t(c) & 63)) & 1;
     const std::uint32_t begin = occupied ? m_offsets[std::size_t(c)] : 0, end = occupied ? m_offsets[std::size_t(c) + 1] : 0;
@@ -145,16 +149,29 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
       }
     }
     // Leave through the nearest cell plane; on exact ties x, then y, then z.
-    const int axis = t_next[0] <= t_next[1] ? (t_next[0] <= t_next[2] ? 0 : 2) : (t_next[1] <= t_next[2] ? 1 : 2);
-    const double t_exit = t_next[axis];
+    // At least one axis moves (d != 0), so the nearest plane is finite while
+    // t_end is, and an axis that does not move is never the nearest.
+    const double t_exit = std::min(tx, std::min(ty, tz));
     if constexpr (!AnyHit && !Whole) {
       if (best.valid() && double(best.t) + margin_t < t_exit) return true;
     }
-    if (t_exit > t_end || step[axis] == 0) break;  // step 0: no plane left to cross
-    cell[axis] += step[axis];
-    if (cell[axis] == last[axis]) break;
-    c += stride[axis];
-    t_next[axis] += t_delta[axis];
+    if (!(t_exit <= t_end)) break;
+    if (tx <= ty && tx <= tz) {
+      ix += step[0];
+      if (ix == last[0]) break;
+      c += stride[0];
+      tx += dx;
+    } else if (ty <= tz) {
+      iy += step[1];
+      if (iy == last[1]) break;
+      c += stride[1];
+      ty += dy;
+    } else {
+      iz += step[2];
+      if (iz == last[2]) break;
+      c += stride[2];
+      tz += dz;
+    }
   }
   return best.valid();
 }
