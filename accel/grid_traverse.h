@@ -15,7 +15,7 @@ namespace kappa {
 
 /// A recorder that records nothing: every call compiles away.
 struct NoRecorder {
-  void cell(std::uint64_t, std::uint32_t) {}
+  void cell(std::uint64_t, int, int, int, std::uint32_t) {}
   void test() {}
   void skip() {}
   void hit() {}
@@ -127,7 +127,7 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
   while (true) {
     const bool occupied = (m_occupied[std::size_t(c) >> 6] >> (std::size_t(c) & 63)) & 1;
     const std::uint32_t begin = occupied ? m_offsets[std::size_t(c)] : 0, end = occupied ? m_offsets[std::size_t(c) + 1] : 0;
-    recorder.cell(std::uint64_t(c), end - begin);
+    recorder.cell(std::uint64_t(c), ix, iy, iz, end - begin);
     for (std::uint32_t k = begin; k < end; ++k) {
       const TriangleId id = m_refs[k];
       if (mailbox.seen(id)) {

@@ -25,14 +25,18 @@ void write_cell_map(const std::filesystem::path& file, const UniformGrid& grid, 
   std::uint64_t rays = 0;
   for (const CellCounters& c : counters.classes) rays += c.totals.rays;
   std::vector<double> p(std::size_t(w) * std::size_t(h)), theta(p.size());
+  std::vector<std::uint64_t> all_visits(r.cells(), 0);
+  for (const CellCounters& cls : counters.classes) {
+    const std::vector<std::uint64_t> v = cls.visits();
+    for (std::size_t i = 0; i < v.size(); ++i) all_visits[i] += v[i];
+  }
   for (int v = 0; v < h; ++v) {
     for (int u = 0; u < w; ++u) {
       for (int k = 0; k < depth; ++k) {
         int ijk[3];
         ijk[u_axis] = u, ijk[v_axis] = v, ijk[axis] = k;
         const std::uint64_t c = grid.cell_index(ijk[0], ijk[1], ijk[2]);
-        std::uint64_t visits = 0;
-        for (const CellCounters& cls : counters.classes) visits += cls.cells()[c].visits;
+        const std::uint64_t visits = all_visits[c];
         // Image rows run top-down: the v axis points up in the picture.
         const std::size_t px = std::size_t(h - 1 - v) * std::size_t(w) + std::size_t(u);
         p[px] += rays > 0 ? double(visits) / double(rays) : 0.0;

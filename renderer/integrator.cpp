@@ -247,12 +247,13 @@ RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSe
     // --grid-max-bytes; otherwise only per-class totals are kept.
     const std::uint64_t cells = grid->info().resolution.cells();
     const std::uint64_t threads = std::uint64_t(tbb::this_task_arena::max_concurrency());
-    const std::uint64_t need = cells * 3 * sizeof(std::uint64_t) * kRenderClasses * threads;
+    const std::uint64_t need = cells * (sizeof(std::uint32_t) + 2 * sizeof(std::uint64_t)) * kRenderClasses * threads;
     const bool per_cell = grid->info().bytes + need <= settings.stats_max_bytes;
-    tbb::enumerable_thread_specific<RenderCounters> per_thread([&] { return RenderCounters(per_cell ? cells : 0); });
+    tbb::enumerable_thread_specific<RenderCounters> per_thread(
+        [&] { return RenderCounters(grid->info().resolution, per_cell); });
     result = render_tiles(scene, settings, film, progress,
                           [&] { return CountingQueries(*grid, per_thread.local()); });
-    auto merged = std::make_shared<RenderCounters>(per_cell ? cells : 0);
+    auto merged = std::make_shared<RenderCounters>(grid->info().resolution, per_cell);
     per_thread.combine_each([&](const RenderCounters& c) { merged->merge(c); });
     result.counters = merged;
     if (!per_cell)

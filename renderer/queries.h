@@ -55,7 +55,10 @@ class CountingQueries {
     const RenderClass k = class_of_depth(depth);
     CellCounters& c = m_counters.classes[k];
     std::optional<Hit> hit;
-    timed(k, [&] { hit = m_grid.closest_hit(r, c); });
+    timed(k, [&] {
+      CellCounters::Tally tally(c);
+      hit = m_grid.closest_hit(r, tally);
+    });
     ++c.totals.rays;
     c.totals.hits += hit.has_value();
     predict(k, r, hit ? hit->t : r.tmax);
@@ -66,7 +69,10 @@ class CountingQueries {
     ++rays;
     CellCounters& c = m_counters.classes[kShadow];
     bool occluded = false;
-    timed(kShadow, [&] { occluded = m_grid.any_hit(r, c); });
+    timed(kShadow, [&] {
+      CellCounters::Tally tally(c);
+      occluded = m_grid.any_hit(r, tally);
+    });
     ++c.totals.rays;
     c.totals.hits += occluded;
     predict(kShadow, r, r.tmax);  // where an any-hit walk stopped is not known: an upper bound

@@ -61,7 +61,7 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
   if (grid && result.counters) {
     const RenderCounters& rc = *result.counters;
     const std::vector<std::uint32_t> theta = occupancies(*grid);
-    CellCounters all(rc.classes[0].per_cell() ? theta.size() : 0);
+    CellCounters all(grid->info().resolution, rc.classes[0].per_cell());
     std::uint64_t all_predicted = 0;
     double all_seconds = 0;
     for (std::size_t k = 0; k < kRenderClasses; ++k) {

@@ -20,12 +20,12 @@ std::vector<std::uint32_t> occupancies(const UniformGrid& grid) {
 }
 
 CastMeasurement cast_with_counters(const UniformGrid& grid, std::span<const Ray> rays, GridWalk walk, int threads) {
-  const std::uint64_t cells = grid.info().resolution.cells();
   std::optional<tbb::global_control> limit;
   if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
 
   const auto start = std::chrono::steady_clock::now();
-  tbb::enumerable_thread_specific<CellCounters> per_thread([cells] { return CellCounters(cells); });
+  const GridResolution res = grid.info().resolution;
+  tbb::enumerable_thread_specific<CellCounters> per_thread([res] { return CellCounters(res); });
   // Where each ray's walk ended: its closest hit, else its tmax.
   std::vector<float> end_t(rays.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024), [&](const auto& range) {
@@ -33,22 +33,23 @@ CastMeasurement cast_with_counters(const UniformGrid& grid, std::span<const Ray>
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
       bool hit = false;
       end_t[i] = rays[i].tmax;
+      CellCounters::Tally tally(counters);
       switch (walk) {
         case GridWalk::closest: {
-          const auto h = grid.closest_hit(rays[i], counters);
+          const auto h = grid.closest_hit(rays[i], tally);
           hit = h.has_value();
           if (h) end_t[i] = h->t;
           break;
         }
-        case GridWalk::any: hit = grid.any_hit(rays[i], counters); break;
-        case GridWalk::whole: hit = grid.walk_whole(rays[i], counters).has_value(); break;
+        case GridWalk::any: hit = grid.any_hit(rays[i], tally); break;
+        case GridWalk::whole: hit = grid.walk_whole(rays[i], tally).has_value(); break;
       }
       ++counters.totals.rays;
       counters.totals.hits += hit;
     }
   });
   CastMeasurement m;
-  m.counters = CellCounters(cells);
+  m.counters = CellCounters(res);
   per_thread.combine_each([&](const CellCounters& c) { m.counters.merge(c); });
   m.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

@@ -13,7 +13,7 @@
 namespace kappa {
 
 struct CastMeasurement {
-  CellCounters counters{0};
+  CellCounters counters{GridResolution{}, false};
   std::vector<std::uint32_t> theta;  ///< Theta_i, from the grid
   CollusionStats collusion;
   double cells_per_ray_predicted = 0;  ///< mean over rays of 1 + sum_a |d_a| len / l_a (eq 24 per axis)

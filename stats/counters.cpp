@@ -12,18 +12,38 @@ ClassTotals& ClassTotals::operator+=(const ClassTotals& o) {
   return *this;
 }
 
+CellCounters::CellCounters(const GridResolution& res, bool per_cell) {
+  if (!per_cell) return;
+  m_visits.assign(res.cells(), 0);
+  m_tests.assign(res.cells(), 0);
+  m_hits.assign(res.cells(), 0);
+}
+
+void CellCounters::fold() {
+  if (m_visits_64.empty()) m_visits_64.assign(m_visits.size(), 0);
+  for (std::size_t i = 0; i < m_visits.size(); ++i) {
+    m_visits_64[i] += m_visits[i];
+    m_visits[i] = 0;
+  }
+  m_queries_since_fold = 0;
+}
+
 void CellCounters::merge(const CellCounters& other) {
-  for (std::size_t i = 0; i < m_cells.size() && i < other.m_cells.size(); ++i) {
-    m_cells[i].visits += other.m_cells[i].visits;
-    m_cells[i].tests += other.m_cells[i].tests;
-    m_cells[i].hits += other.m_cells[i].hits;
+  if (per_cell() && other.per_cell()) {
+    if (m_visits_64.empty()) m_visits_64.assign(m_visits.size(), 0);
+    for (std::size_t b = 0; b < m_visits.size(); ++b)
+      m_visits_64[b] += std::uint64_t(other.m_visits[b]) + (other.m_visits_64.empty() ? 0 : other.m_visits_64[b]);
+    for (std::size_t i = 0; i < m_tests.size(); ++i) {
+      m_tests[i] += other.m_tests[i];
+      m_hits[i] += other.m_hits[i];
+    }
   }
   totals += other.totals;
 }
 
 std::vector<std::uint64_t> CellCounters::visits() const {
-  std::vector<std::uint64_t> v(m_cells.size());
-  for (std::size_t i = 0; i < m_cells.size(); ++i) v[i] = m_cells[i].visits;
+  std::vector<std::uint64_t> v(m_visits.size());
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::uint64_t(m_visits[i]) + (m_visits_64.empty() ? 0 : m_visits_64[i]);
   return v;
 }
 

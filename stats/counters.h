@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "accel/grid_resolution.h"
+
 namespace kappa {
 
 /// Totals over all rays of a class (64-bit: renders cast billions).
@@ -22,51 +24,78 @@ struct ClassTotals {
   ClassTotals& operator+=(const ClassTotals& o);
 };
 
-/// One cell's counts for one class. Kept together so that a visit touches
-/// one cache line, not three arrays: on grids of millions of cells the
-/// counters' cache misses are most of what statistics cost.
-struct CellCount {
-  std::uint64_t visits = 0;  ///< rays that visited the cell
-  std::uint64_t tests = 0;   ///< triangle tests made in it
-  std::uint64_t hits = 0;    ///< tests in it that found a (new closest) hit
-  bool operator==(const CellCount&) const = default;
-};
-
 class CellCounters {
  public:
-  /// `cells` = 0 keeps totals only (per-cell arrays refused for memory).
-  explicit CellCounters(std::uint64_t cells) : m_cells(cells) {}
+  /// Counters for the cells of a grid of resolution `res`; with `per_cell`
+  /// false only totals are kept (per-cell arrays refused for memory).
+  explicit CellCounters(const GridResolution& res, bool per_cell = true);
 
-  bool per_cell() const { return !m_cells.empty(); }
+  bool per_cell() const { return !m_visits.empty(); }
 
-  // The Recorder interface.
-  void cell(std::uint64_t c, std::uint32_t theta) {
-    m_current = per_cell() ? &m_cells[c] : nullptr;
-    if (m_current) ++m_current->visits;
-    ++totals.cells;
-    totals.refs += theta;
-  }
-  void test() {
-    if (m_current) ++m_current->tests;
-    ++totals.tests;
-  }
-  void skip() { ++totals.mailbox_skips; }
-  void hit() {
-    if (m_current) ++m_current->hits;
-  }
+  /// The recorder of one query (UniformGrid's templated walks): counts in
+  /// locals, added to the totals once at the end. Visits, written at every
+  /// step, are 32-bit and kept apart from tests and hits (written only when
+  /// a triangle is tested): on grids of millions of cells the cache lines
+  /// those writes touch are most of what statistics cost.
+  class Tally {
+   public:
+    explicit Tally(CellCounters& owner)
+        : m_owner(owner), m_visits(owner.per_cell() ? owner.m_visits.data() : nullptr) {}
+    ~Tally() {
+      ClassTotals& t = m_owner.totals;
+      t.cells += m_cells;
+      t.refs += m_refs;
+      t.tests += m_tests;
+      t.mailbox_skips += m_skips;
+      // A ray visits a cell at most once, so no 32-bit count can overflow
+      // before 2^32 - 1 queries: fold into 64 bits before that.
+      if (++m_owner.m_queries_since_fold == kFoldEvery) m_owner.fold();
+    }
+    Tally(const Tally&) = delete;
+    Tally& operator=(const Tally&) = delete;
+
+    void cell(std::uint64_t c, int /*ix*/, int /*iy*/, int /*iz*/, std::uint32_t theta) {
+      ++m_cells;
+      m_refs += theta;
+      m_current = c;
+      if (m_visits) ++m_visits[c];
+    }
+    void test() {
+      ++m_tests;
+      if (m_visits) ++m_owner.m_tests[m_current];
+    }
+    void skip() { ++m_skips; }
+    void hit() {
+      if (m_visits) ++m_owner.m_hits[m_current];
+    }
+
+   private:
+    CellCounters& m_owner;
+    std::uint32_t* m_visits;
+    std::uint64_t m_current = 0;
+    std::uint64_t m_cells = 0, m_refs = 0, m_tests = 0, m_skips = 0;
+  };
 
   /// Adds `other` into this (the per-thread merge).
   void merge(const CellCounters& other);
 
-  const std::vector<CellCount>& cells() const { return m_cells; }
-  /// Visits per cell (p_i * rays), in cell order.
+  /// Per cell, in cell order: rays that visited it (p_i * rays), triangle
+  /// tests made in it, tests in it that found a (new closest) hit.
   std::vector<std::uint64_t> visits() const;
+  const std::vector<std::uint64_t>& tests_in() const { return m_tests; }
+  const std::vector<std::uint64_t>& hits_in() const { return m_hits; }
 
   ClassTotals totals;
 
  private:
-  std::vector<CellCount> m_cells;
-  CellCount* m_current = nullptr;
+  static constexpr std::uint64_t kFoldEvery = std::uint64_t(1) << 31;
+  void fold();
+
+
+  std::vector<std::uint32_t> m_visits;     ///< since the last fold
+  std::vector<std::uint64_t> m_visits_64;  ///< folded visits (empty until the first fold)
+  std::vector<std::uint64_t> m_tests, m_hits;
+  std::uint64_t m_queries_since_fold = 0;
 };
 
 }  // namespace kappa

@@ -22,9 +22,9 @@ inline RenderClass class_of_depth(int depth) {
 
 /// One thread's counters for a frame.
 struct RenderCounters {
-  explicit RenderCounters(std::uint64_t cells_per_class)
-      : classes{CellCounters(cells_per_class), CellCounters(cells_per_class), CellCounters(cells_per_class),
-                CellCounters(cells_per_class), CellCounters(cells_per_class)} {}
+  RenderCounters(const GridResolution& res, bool per_cell)
+      : classes{CellCounters(res, per_cell), CellCounters(res, per_cell), CellCounters(res, per_cell),
+                CellCounters(res, per_cell), CellCounters(res, per_cell)} {}
 
   std::array<CellCounters, kRenderClasses> classes;
   /// Sum over rays of predicted cells (1 + sum_a |v_a|/l_a) in 1/1024 units:

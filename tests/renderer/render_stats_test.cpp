@@ -53,7 +53,9 @@ TEST(RenderStats, CountersDoNotDependOnTheThreadCount) {
   const RenderResult two = render_with(scene, *grid, true, 2, f2);
   for (std::size_t k = 0; k < kRenderClasses; ++k) {
     const CellCounters &a = one.counters->classes[k], &b = two.counters->classes[k];
-    EXPECT_EQ(a.cells(), b.cells()) << kRenderClassNames[k];
+    EXPECT_EQ(a.visits(), b.visits()) << kRenderClassNames[k];
+    EXPECT_EQ(a.tests_in(), b.tests_in()) << kRenderClassNames[k];
+    EXPECT_EQ(a.hits_in(), b.hits_in()) << kRenderClassNames[k];
     EXPECT_EQ(a.totals.tests, b.totals.tests) << kRenderClassNames[k];
     EXPECT_EQ(a.totals.mailbox_skips, b.totals.mailbox_skips) << kRenderClassNames[k];
     EXPECT_EQ(one.counters->predicted_fixed[k], two.counters->predicted_fixed[k]) << kRenderClassNames[k];
