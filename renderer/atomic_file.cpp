@@ -104,6 +104,12 @@ void write_and_commit(AtomicOutput& output, const std::string& text) {
 }
 
 void AtomicOutput::commit() {
+  // On disk before it takes the target's name, so that a crash right after
+  // cannot leave an empty file there.
+  if (const int fd = ::open(m_temp.c_str(), O_RDONLY); fd >= 0) {
+    ::fsync(fd);
+    ::close(fd);
+  }
   if (std::rename(m_temp.c_str(), m_target.c_str()) != 0)
     fail(m_target, 0, std::string("cannot replace: ") + std::strerror(errno));
   m_committed = true;

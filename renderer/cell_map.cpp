@@ -11,13 +11,12 @@
 
 namespace kappa {
 
-void write_cell_map(const std::filesystem::path& file, const UniformGrid& grid, const RenderCounters& counters,
-                    int axis) {
+void write_cell_map(AtomicOutput& out, const UniformGrid& grid, const RenderCounters& counters, int axis) {
+  const std::filesystem::path& file = out.target();
   std::string ext = file.extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".exr" && ext != ".png") fail(file, 0, "--cell-map: the file must end in .exr or .png");
   if (!counters.classes[0].per_cell()) fail(file, 0, "--cell-map: per-cell statistics were refused for this frame");
-  AtomicOutput out(file);
 
   const GridResolution& r = grid.info().resolution;
   const int u_axis = axis == 0 ? 1 : 0, v_axis = axis == 2 ? 1 : 2;  // image x and y

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "accel/grid.h"
+#include "atomic_file.h"
 #include "stats/render_counters.h"
 
 namespace kappa {
@@ -12,8 +13,9 @@ namespace kappa {
 /// (0 = x, 1 = y, 2 = z) into an image of the other two axes. An .exr gets
 /// the raw sums as channels "p" and "theta"; a .png shows p in red and Theta
 /// in green, each scaled by its square root to its maximum, so yellow marks
-/// cells that are both visited and occupied. Throws InputError.
-void write_cell_map(const std::filesystem::path& file, const UniformGrid& grid, const RenderCounters& counters,
-                    int axis);
+/// cells that are both visited and occupied. The format follows the target's
+/// extension (checked by the caller); `counters` must hold per-cell counts.
+/// Commits `out`; throws InputError.
+void write_cell_map(AtomicOutput& out, const UniformGrid& grid, const RenderCounters& counters, int axis);
 
 }  // namespace kappa

@@ -246,7 +246,8 @@ RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSe
     // Per-cell arrays per class and per thread must fit beside the grid in
     // --grid-max-bytes; otherwise only per-class totals are kept.
     const std::uint64_t cells = grid->info().resolution.cells();
-    const std::uint64_t threads = std::uint64_t(tbb::this_task_arena::max_concurrency());
+    const std::uint64_t threads =
+        std::uint64_t(settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency());
     const std::uint64_t need = cells * (sizeof(std::uint32_t) + 2 * sizeof(std::uint64_t)) * kRenderClasses * threads;
     const bool per_cell = grid->info().bytes + need <= settings.stats_max_bytes;
     tbb::enumerable_thread_specific<RenderCounters> per_thread(

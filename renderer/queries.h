@@ -96,10 +96,15 @@ class CountingQueries {
   /// Predicted cells for the part of the ray inside the grid, up to `end`.
   void predict(RenderClass k, const Ray& r, float end) {
     const GridInfo& g = m_grid.info();
+    // The same early-outs as the walk: these rays visit no cell.
+    if (!is_finite(r.o) || !is_finite(r.d) || r.d == Vec3f{0, 0, 0} || !(r.tmin <= end)) return;
     double t0 = r.tmin, t1 = end;
     for (int a = 0; a < 3; ++a) {
       const double d = r.d[a], o = r.o[a];
-      if (d == 0) continue;
+      if (d == 0) {
+        if (o < g.lo[a] || o > g.hi[a]) return;
+        continue;
+      }
       double tn = (g.lo[a] - o) / d, tf = (g.hi[a] - o) / d;
       if (tn > tf) std::swap(tn, tf);
       t0 = std::max(t0, tn);
@@ -107,6 +112,7 @@ class CountingQueries {
     }
     if (!(t1 > t0)) return;
     const double cells = cells_for_segment(Vec3d(r.d) * (t1 - t0), g.cell_size);
+    if (!std::isfinite(cells)) return;
     m_counters.predicted_fixed[k] += std::uint64_t(std::llround(cells * 1024.0));
   }
 

@@ -88,8 +88,19 @@ int run_render(const RenderOptions& options) {
   // Claim the outputs before rendering: an unwritable path fails now, not
   // after an hour of work.
   AtomicOutput output(output_path(options, scene));
-  std::unique_ptr<AtomicOutput> report_out;
+  std::unique_ptr<AtomicOutput> report_out, cell_map_out;
   if (!options.report.empty()) report_out = std::make_unique<AtomicOutput>(options.report);
+  if (!options.cell_map.empty()) cell_map_out = std::make_unique<AtomicOutput>(options.cell_map);
+  // The calibration too is read now: a bad file must not cost a finished render.
+  std::optional<Calibration> calibration;
+  try {
+    calibration = load_calibration(options.calibration.empty() ? default_calibration_path()
+                                                               : std::filesystem::path(options.calibration));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  if (!calibration && !options.calibration.empty())
+    throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
 
   // --threads limits the accelerator build as well as the render.
   std::optional<tbb::global_control> thread_limit;
@@ -140,21 +151,16 @@ int run_render(const RenderOptions& options) {
       {"kappa:rays", std::to_string(result.rays)},
   };
   write_exr(output.temp_path(), film, metadata);
-  std::optional<Calibration> calibration;
-  try {
-    calibration = load_calibration(options.calibration.empty() ? default_calibration_path()
-                                                               : std::filesystem::path(options.calibration));
-  } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
-  }
-  if (!calibration && !options.calibration.empty())
-    throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
   const nlohmann::ordered_json report = render_report(
       scene, *accel, FrameFacts{scene.width, scene.height, options.spp, threads, options.seed}, result, calibration);
 
-  if (!options.cell_map.empty() && result.counters) {
-    const auto* grid = dynamic_cast<const UniformGrid*>(accel.get());
-    write_cell_map(options.cell_map, *grid, *result.counters, options.cell_map_axis[0] - 'x');
+  if (cell_map_out && result.counters) {
+    if (result.counters->classes[0].per_cell()) {
+      const auto* grid = dynamic_cast<const UniformGrid*>(accel.get());
+      write_cell_map(*cell_map_out, *grid, *result.counters, options.cell_map_axis[0] - 'x');
+    } else {
+      std::fprintf(stderr, "kappa: warning: --cell-map skipped: per-cell statistics were refused for this frame\n");
+    }
   }
   output.commit();
   if (report_out) write_and_commit(*report_out, report.dump(2) + "\n");

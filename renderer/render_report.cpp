@@ -19,8 +19,8 @@ CastMeasurement measurement(const CellCounters& counters, const std::vector<std:
   const std::uint64_t rays = counters.totals.rays;
   if (counters.per_cell()) {
     m.collusion = collusion(counters.visits(), theta, rays);
-  } else {  // totals only: what needs p_i stays undefined
-    m.collusion.N_c = theta.size();
+  } else {  // totals only: Theta's moments as usual, what needs p_i undefined
+    m.collusion = collusion(std::vector<std::uint64_t>(theta.size(), 0), theta, 0);
     m.collusion.N_r = rays;
     m.collusion.p_tot = rays > 0 ? double(counters.totals.cells) / double(rays) : 0.0;
     m.collusion.p_avg = theta.empty() ? 0.0 : m.collusion.p_tot / double(theta.size());

@@ -1,5 +1,6 @@
 #include "calibration.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
@@ -8,6 +9,10 @@ namespace kappa {
 
 Calibration fit_calibration(std::span<const CostSample> samples) {
   if (samples.size() < 3) throw std::invalid_argument("calibration: at least 3 measurements are needed");
+  for (const CostSample& s : samples)
+    if (!(s.seconds_per_ray > 0) || !std::isfinite(s.seconds_per_ray) || !std::isfinite(s.cells_per_ray) ||
+        !std::isfinite(s.refs_per_ray))
+      throw std::invalid_argument("calibration: measurement '" + s.label + "' is not a positive finite time");
   // Normal equations A^T W A x = A^T W b with rows (1, cells, refs), weights 1/b^2.
   double m[3][4] = {};
   for (const CostSample& s : samples) {
@@ -18,13 +23,17 @@ Calibration fit_calibration(std::span<const CostSample> samples) {
       m[i][3] += w * row[i] * s.seconds_per_ray;
     }
   }
-  // Gaussian elimination with partial pivoting.
+  // Gauss-Jordan elimination with partial pivoting; a pivot tiny relative to
+  // the matrix means the measurements do not separate the three constants.
+  double scale = 0;
+  for (int i = 0; i < 3; ++i) scale = std::max(scale, std::abs(m[i][i]));
   for (int c = 0; c < 3; ++c) {
     int pivot = c;
     for (int r = c + 1; r < 3; ++r)
       if (std::abs(m[r][c]) > std::abs(m[pivot][c])) pivot = r;
     for (int k = 0; k < 4; ++k) std::swap(m[c][k], m[pivot][k]);
-    if (!(std::abs(m[c][c]) > 1e-300)) throw std::invalid_argument("calibration: the measurements do not determine T0, Ts, Th");
+    if (!(std::abs(m[c][c]) > 1e-12 * scale))
+      throw std::invalid_argument("calibration: the measurements do not determine T0, Ts, Th");
     for (int r = 0; r < 3; ++r) {
       if (r == c) continue;
       const double f = m[r][c] / m[c][c];
@@ -35,6 +44,8 @@ Calibration fit_calibration(std::span<const CostSample> samples) {
   cal.T0_ns = m[0][3] / m[0][0] * 1e9;
   cal.Ts_ns = m[1][3] / m[1][1] * 1e9;
   cal.Th_ns = m[2][3] / m[2][2] * 1e9;
+  if (!std::isfinite(cal.T0_ns) || !std::isfinite(cal.Ts_ns) || !std::isfinite(cal.Th_ns))
+    throw std::invalid_argument("calibration: the fit is not finite");
   cal.samples = samples.size();
   double sum = 0;
   for (const CostSample& s : samples) {

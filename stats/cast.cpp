@@ -63,9 +63,15 @@ CastMeasurement cast_with_counters(const UniformGrid& grid, std::span<const Ray>
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const Ray& r = rays[i];
     const Vec3d o(r.o), d(r.d);
+    // The same early-outs as the walk: these rays visit no cell.
+    if (!is_finite(r.o) || !is_finite(r.d) || r.d == Vec3f{0, 0, 0} || !(r.tmin <= end_t[i])) continue;
     double t0 = r.tmin, t1 = end_t[i];
+    bool outside = false;
     for (int a = 0; a < 3; ++a) {
-      if (d[a] == 0) continue;
+      if (d[a] == 0) {
+        outside |= o[a] < g.lo[a] || o[a] > g.hi[a];
+        continue;
+      }
       double tn = (g.lo[a] - o[a]) / d[a], tf = (g.hi[a] - o[a]) / d[a];
       if (tn > tf) std::swap(tn, tf);
       t0 = std::max(t0, tn);
@@ -73,7 +79,7 @@ CastMeasurement cast_with_counters(const UniformGrid& grid, std::span<const Ray>
     }
     // Any-hit walks may stop before tmax at an unknown point: their
     // prediction uses the whole segment, an upper bound.
-    if (t1 > t0) predicted += cells_for_segment(d * (t1 - t0), g.cell_size);
+    if (!outside && t1 > t0) predicted += cells_for_segment(d * (t1 - t0), g.cell_size);
   }
   m.cells_per_ray_predicted = rays.empty() ? 0.0 : predicted / double(rays.size());
   return m;

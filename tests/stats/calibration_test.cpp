@@ -70,3 +70,37 @@ TEST(Calibration, CalibrateThenRenderReportsTheCost) {
 
 }  // namespace
 }  // namespace kappa
+
+namespace kappa {
+namespace {
+
+TEST(Calibration, NonPositiveTimesAreRefused) {
+  std::vector<CostSample> samples = {{1e-7, 1, 1, "a"}, {0.0, 2, 5, "b"}, {3e-7, 3, 2, "c"}};
+  EXPECT_THROW(fit_calibration(samples), std::invalid_argument);
+}
+
+TEST(Calibration, ABadCalibrationFileIsRefusedBeforeRendering) {
+  test::TempDir tmp;
+  test::write_file(tmp / "bad.json", "{\"T0_ns\": null}");
+  const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
+  const auto r = test::run_kappa({"render", scene, "--spp", "1000", "--out", (tmp / "x.exr").string(), "--calibration",
+                                  (tmp / "bad.json").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err_lines().size(), 1u) << r.std_err;
+  EXPECT_FALSE(std::filesystem::exists(tmp / "x.exr"));
+}
+
+TEST(Calibration, RefusedPerCellStatisticsSkipTheCellMapButKeepTheImage) {
+  test::TempDir tmp;
+  const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
+  const auto r = test::run_kappa({"render", scene, "--spp", "1", "--width", "8", "--height", "8", "--out",
+                                  (tmp / "x.exr").string(), "--cell-map", (tmp / "m.exr").string(), "--grid-max-bytes",
+                                  "9000", "--quiet"});
+  EXPECT_EQ(r.exit_code, 0) << r.std_err;
+  EXPECT_TRUE(std::filesystem::exists(tmp / "x.exr"));
+  EXPECT_FALSE(std::filesystem::exists(tmp / "m.exr"));
+  EXPECT_NE(r.std_err.find("--cell-map skipped"), std::string::npos) << r.std_err;
+}
+
+}  // namespace
+}  // namespace kappa
