@@ -97,8 +97,8 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
     m_info.resolution = choose_resolution(extent, std::clamp(options.density * double(m_info.N), 1.0, std::max(1.0, cap)));
   }
   const std::uint64_t cells = m_info.resolution.cells();
-  // Offsets plus the fill pass's per-cell cursors.
-  const std::uint64_t offset_bytes = (cells + 1) * sizeof(std::uint32_t);
+  // Offsets (with the occupancy bits) plus the fill pass's per-cell cursors.
+  const std::uint64_t offset_bytes = (cells + 1) * sizeof(std::uint32_t) + (cells + 63) / 64 * sizeof(std::uint64_t);
   if (cells >= std::numeric_limits<std::uint32_t>::max())
     throw std::invalid_argument("grid: " + m_info.resolution.to_string() + " = " + std::to_string(cells) +
                                 " cells, over the 2^32 - 1 a grid can index");
@@ -139,7 +139,7 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
   m_occupied.assign((cells + 63) / 64, 0);
   for (std::uint64_t c = 0; c < cells; ++c)
     if (m_offsets[c] != m_offsets[c + 1]) m_occupied[c >> 6] |= std::uint64_t(1) << (c & 63);
-  m_info.bytes = bytes + m_occupied.size() * sizeof(std::uint64_t);
+  m_info.bytes = bytes;  // offset_bytes already counts the occupancy bits
 
   // Pass 2: fill. Threads race for slots within a cell, so each cell is
   // sorted afterwards: the layout (and anything counted over it) does not

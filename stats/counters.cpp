@@ -12,7 +12,8 @@ ClassTotals& ClassTotals::operator+=(const ClassTotals& o) {
   return *this;
 }
 
-CellCounters::CellCounters(const GridResolution& res, bool per_cell) {
+CellCounters::CellCounters(const GridResolution& res, bool per_cell, std::uint64_t fold_every)
+    : m_fold_every(fold_every) {
   if (!per_cell) return;
   m_visits.assign(res.cells(), 0);
   m_tests.assign(res.cells(), 0);

@@ -26,9 +26,15 @@ struct ClassTotals {
 
 class CellCounters {
  public:
+  /// Queries between folds: a ray visits a cell at most once, so no 32-bit
+  /// visit count can overflow in 2^31 queries.
+  static constexpr std::uint64_t kFoldEvery = std::uint64_t(1) << 31;
+
   /// Counters for the cells of a grid of resolution `res`; with `per_cell`
   /// false only totals are kept (per-cell arrays refused for memory).
-  explicit CellCounters(const GridResolution& res, bool per_cell = true);
+  /// `fold_every` (queries between folds of the 32-bit visit counts into 64
+  /// bits) is for tests; it must stay at most 2^32 - 1.
+  explicit CellCounters(const GridResolution& res, bool per_cell = true, std::uint64_t fold_every = kFoldEvery);
 
   bool per_cell() const { return !m_visits.empty(); }
 
@@ -49,7 +55,7 @@ class CellCounters {
       t.mailbox_skips += m_skips;
       // A ray visits a cell at most once, so no 32-bit count can overflow
       // before 2^32 - 1 queries: fold into 64 bits before that.
-      if (++m_owner.m_queries_since_fold == kFoldEvery) m_owner.fold();
+      if (++m_owner.m_queries_since_fold == m_owner.m_fold_every) m_owner.fold();
     }
     Tally(const Tally&) = delete;
     Tally& operator=(const Tally&) = delete;
@@ -88,7 +94,6 @@ class CellCounters {
   ClassTotals totals;
 
  private:
-  static constexpr std::uint64_t kFoldEvery = std::uint64_t(1) << 31;
   void fold();
 
 
@@ -96,6 +101,7 @@ class CellCounters {
   std::vector<std::uint64_t> m_visits_64;  ///< folded visits (empty until the first fold)
   std::vector<std::uint64_t> m_tests, m_hits;
   std::uint64_t m_queries_since_fold = 0;
+  std::uint64_t m_fold_every = kFoldEvery;
 };
 
 }  // namespace kappa

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "accel/grid.h"
+#include "accel/grid_traverse.h"
 #include "renderer/obj_loader.h"
 #include "stats/cast.h"
 #include "stats/cost_model.h"
@@ -197,6 +198,38 @@ TEST(CastIdentities, CountersDoNotDependOnTheThreadCount) {
   EXPECT_EQ(one.counters.totals.mailbox_skips, two.counters.totals.mailbox_skips);
   EXPECT_EQ(one.counters.totals.hits, two.counters.totals.hits);
   EXPECT_EQ(*one.collusion.kappa, *two.collusion.kappa);
+}
+
+}  // namespace
+}  // namespace kappa
+
+namespace kappa {
+namespace {
+
+TEST(Counters, FoldingThirtyTwoBitVisitsLosesNothing) {
+  // Fold after every 7 queries instead of 2^31: totals and per-cell counts
+  // must match an unfolded run exactly, and merging folded with unfolded
+  // counters must add up.
+  const auto tris = soup(500, 0.05f, 11);
+  const UniformGrid grid = grid_at(tris, {12, 12, 12});
+  const auto lines = uniform_lines(grid.info().lo, grid.info().hi, 1000, 12);
+  CellCounters plain(grid.info().resolution), folded(grid.info().resolution, true, 7);
+  for (const Ray& r : lines) {
+    {
+      CellCounters::Tally t(plain);
+      grid.walk_whole(r, t);
+    }
+    CellCounters::Tally t(folded);
+    grid.walk_whole(r, t);
+  }
+  EXPECT_EQ(plain.visits(), folded.visits());
+  EXPECT_EQ(plain.tests_in(), folded.tests_in());
+  EXPECT_EQ(plain.totals.cells, folded.totals.cells);
+  CellCounters sum(grid.info().resolution);
+  sum.merge(plain);
+  sum.merge(folded);
+  const auto v = sum.visits(), p = plain.visits();
+  for (std::size_t i = 0; i < v.size(); ++i) ASSERT_EQ(v[i], 2 * p[i]);
 }
 
 }  // namespace
