@@ -65,6 +65,18 @@ void write_file(const std::filesystem::path& p, const std::string& text) {
   out << text;
 }
 
+std::vector<Triangle> random_soup(std::size_t n, std::uint32_t seed, float size) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> pos(-1.0f, 1.0f), edge(-size, size);
+  std::vector<Triangle> tris;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3f c{pos(rng), pos(rng), pos(rng)};
+    tris.push_back({c + Vec3f{edge(rng), edge(rng), edge(rng)}, c + Vec3f{edge(rng), edge(rng), edge(rng)},
+                    c + Vec3f{edge(rng), edge(rng), edge(rng)}});
+  }
+  return tris;
+}
+
 namespace {
 void add_quad(Scene& scene, Vec3f a, Vec3f b, Vec3f c, Vec3f d, bool flip, std::uint32_t material) {
   if (flip) std::swap(b, d);

@@ -47,6 +47,10 @@ RunResult run_kappa(const std::vector<std::string>& args, const std::filesystem:
 std::string read_file(const std::filesystem::path& p);
 void write_file(const std::filesystem::path& p, const std::string& text);
 
+/// n random triangles in [-1, 1]^3: a centre uniform in the cube, each vertex
+/// within +-size of it on every axis (std::mt19937 seeded with `seed`).
+std::vector<Triangle> random_soup(std::size_t n, std::uint32_t seed, float size = 0.1f);
+
 /// Appends the 12 triangles of an axis-aligned box with normals facing
 /// inwards (`inward`) or outwards, all using material `material`.
 void add_box(Scene& scene, const Vec3f& lo, const Vec3f& hi, bool inward, std::uint32_t material);

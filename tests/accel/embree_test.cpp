@@ -159,18 +159,6 @@ std::vector<Ray> tie_rays(std::span<const Triangle> tris, std::size_t n, std::ui
   return rays;
 }
 
-std::vector<Triangle> random_soup(std::size_t n, std::uint32_t seed, float size = 0.1f) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> pos(-1.0f, 1.0f), edge(-size, size);
-  std::vector<Triangle> tris;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3f c{pos(rng), pos(rng), pos(rng)};
-    tris.push_back({c + Vec3f{edge(rng), edge(rng), edge(rng)}, c + Vec3f{edge(rng), edge(rng), edge(rng)},
-                    c + Vec3f{edge(rng), edge(rng), edge(rng)}});
-  }
-  return tris;
-}
-
 std::vector<Triangle> load_mesh(const std::filesystem::path& obj) {
   Scene s;
   Warnings w;
@@ -225,7 +213,7 @@ TEST(Embree, BuildLeavesTheCallersFloatingPointModeAlone) {
   // fresh process, as CTest runs it.
   constexpr unsigned kFtzDaz = 0x8040;
   const unsigned before = _mm_getcsr() & kFtzDaz;
-  const auto tris = random_soup(1000, 11);
+  const auto tris = test::random_soup(1000, 11);
   const EmbreeAccelerator embree(tris);
   EXPECT_EQ(_mm_getcsr() & kFtzDaz, before);
   std::atomic<unsigned> in_tasks{0};
@@ -254,7 +242,7 @@ TEST(Embree, RayLeavingASurfaceFromOnItDoesNotHitIt) {
 
 TEST(Embree, RandomSoupsAgreeWithNaive) {
   for (std::size_t n : {1, 10, 100, 1000, 10000}) {
-    const auto tris = random_soup(n, std::uint32_t(n), n < 100 ? 0.5f : 0.1f);
+    const auto tris = test::random_soup(n, std::uint32_t(n), n < 100 ? 0.5f : 0.1f);
     expect_agreement(("soup " + std::to_string(n)).c_str(), tris, n < 1000 ? 3000 : 1500, 1000);
   }
 }
@@ -291,7 +279,7 @@ TEST(Embree, ClosedBoxIsWatertight) {
 }
 
 TEST(Embree, DegenerateTrianglesAreNeverHitAndIdsStayPut) {
-  auto tris = random_soup(300, 5, 0.2f);
+  auto tris = test::random_soup(300, 5, 0.2f);
   tris.insert(tris.begin() + 10, Triangle{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}});  // collinear
   tris.insert(tris.begin() + 20, Triangle{{0.5f, 0.5f, 0.5f}, {0.5f, 0.5f, 0.5f}, {0, 1, 0}});  // repeated vertex
   tris.push_back({{0, 0, 0}, {0, 0, 0}, {0, 0, 0}});
@@ -318,7 +306,7 @@ TEST(Embree, EmptySceneMissesAndNonFiniteRaysMiss) {
   const EmbreeAccelerator empty(std::span<const Triangle>{});
   EXPECT_FALSE(empty.closest_hit(Ray{{0, 0, 0}, {0, 0, 1}}));
   EXPECT_FALSE(empty.any_hit(Ray{{0, 0, 0}, {0, 0, 1}}));
-  const auto tris = random_soup(100, 8);
+  const auto tris = test::random_soup(100, 8);
   const EmbreeAccelerator embree(tris);
   const NaiveAccelerator naive(tris);
   for (const Ray& r : {Ray{{NAN, 0, 0}, {1, 0, 0}}, Ray{{0, 0, 0}, {INFINITY, 0, 0}}, Ray{{0, 0, 0}, {0, 0, 0}},
@@ -353,7 +341,7 @@ TEST(Embree, BatchAndParallelQueriesMatchSingleOnes) {
 TEST(Embree, FactoryNamesItAndReportsMemoryAndBuildTime) {
   const auto names = accelerator_names();
   EXPECT_NE(std::find(names.begin(), names.end(), "embree"), names.end());
-  const auto tris = random_soup(1000, 10);
+  const auto tris = test::random_soup(1000, 10);
   const auto accel = make_accelerator("embree", tris);
   EXPECT_EQ(accel->name(), "embree");
   const auto& embree = dynamic_cast<const EmbreeAccelerator&>(*accel);

@@ -117,18 +117,6 @@ Rays ray_families(const UniformGrid& grid, std::size_t per_family, std::uint32_t
   return rays;
 }
 
-std::vector<Triangle> random_soup(std::size_t n, std::uint32_t seed, float size = 0.1f) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> pos(-1.0f, 1.0f), edge(-size, size);
-  std::vector<Triangle> tris;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3f c{pos(rng), pos(rng), pos(rng)};
-    tris.push_back({c + Vec3f{edge(rng), edge(rng), edge(rng)}, c + Vec3f{edge(rng), edge(rng), edge(rng)},
-                    c + Vec3f{edge(rng), edge(rng), edge(rng)}});
-  }
-  return tris;
-}
-
 std::vector<Triangle> load_mesh(const std::filesystem::path& obj) {
   Scene s;
   Warnings w;
@@ -141,7 +129,7 @@ std::size_t rays_for(std::size_t triangles) { return std::clamp<std::size_t>(300
 TEST(Grid, RandomSoupsFromOneToAHundredThousandTriangles) {
   for (std::size_t n : {1, 2, 10, 100, 1000, 10000, 100000}) {
     SCOPED_TRACE(std::to_string(n) + " triangles");
-    const auto tris = random_soup(n, std::uint32_t(n), n < 100 ? 0.5f : 0.1f);
+    const auto tris = test::random_soup(n, std::uint32_t(n), n < 100 ? 0.5f : 0.1f);
     const UniformGrid grid = make_grid(tris);
     expect_agreement(tris, grid, ray_families(grid, rays_for(n), 11));
   }
@@ -183,7 +171,7 @@ TEST(Grid, OneTriangleAndFlatScenes) {
 }
 
 TEST(Grid, ScalesAndTranslations) {
-  const auto base = random_soup(500, 15, 0.2f);
+  const auto base = test::random_soup(500, 15, 0.2f);
   for (const auto& [scale, shift] : std::vector<std::pair<float, Vec3f>>{
            {1e-6f, {0, 0, 0}}, {1e-3f, {0, 0, 0}}, {1e3f, {0, 0, 0}}, {1e6f, {0, 0, 0}}, {1.0f, {1e6f, -1e6f, 1e6f}},
            {10.0f, {1e6f, 0, 0}}}) {
@@ -196,7 +184,7 @@ TEST(Grid, ScalesAndTranslations) {
 }
 
 TEST(Grid, DegenerateTrianglesAreLeftOutAndCounted) {
-  auto tris = random_soup(300, 17, 0.2f);
+  auto tris = test::random_soup(300, 17, 0.2f);
   tris.push_back({{0, 0, 0}, {1, 1, 1}, {2, 2, 2}});  // collinear
   tris.push_back({{0.5f, 0.5f, 0.5f}, {0.5f, 0.5f, 0.5f}, {0, 1, 0}});  // repeated vertex
   tris.push_back({{0, 0, 0}, {0, 0, 0}, {0, 0, 0}});
@@ -207,7 +195,7 @@ TEST(Grid, DegenerateTrianglesAreLeftOutAndCounted) {
 }
 
 TEST(Grid, LargeCubicResolutionOnASmallScene) {
-  const auto tris = random_soup(50, 19, 0.3f);
+  const auto tris = test::random_soup(50, 19, 0.3f);
   const UniformGrid grid = make_grid(tris, GridResolution{512, 512, 512});
   EXPECT_EQ(grid.info().resolution.cells(), 512u * 512u * 512u);
   expect_agreement(tris, grid, ray_families(grid, 100, 20));
@@ -269,7 +257,7 @@ TEST(Grid, ResolutionParsingAndChoice) {
 }
 
 TEST(Grid, MemoryLimitIsAClearError) {
-  const auto tris = random_soup(10, 23);
+  const auto tris = test::random_soup(10, 23);
   GridOptions options;
   options.resolution = GridResolution{1024, 1024, 1024};
   options.max_bytes = 1 << 20;
@@ -292,7 +280,7 @@ TEST(Grid, EmptyAndAllDegenerateScenesMiss) {
 }
 
 TEST(Grid, NonFiniteRaysMissLikeNaive) {
-  const auto tris = random_soup(100, 24);
+  const auto tris = test::random_soup(100, 24);
   const UniformGrid grid = make_grid(tris);
   const NaiveAccelerator naive(tris);
   for (const Ray& r : {Ray{{NAN, 0, 0}, {1, 0, 0}}, Ray{{0, 0, 0}, {INFINITY, 0, 0}}, Ray{{0, 0, 0}, {0, 0, 0}}}) {

@@ -7,21 +7,10 @@
 #include <stdexcept>
 
 #include "accel/accel.h"
+#include "test_util.h"
 
 namespace kappa {
 namespace {
-
-std::vector<Triangle> random_soup(std::size_t n, std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> pos(-1.0f, 1.0f), size(-0.2f, 0.2f);
-  std::vector<Triangle> tris;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3f c{pos(rng), pos(rng), pos(rng)};
-    tris.push_back({c + Vec3f{size(rng), size(rng), size(rng)}, c + Vec3f{size(rng), size(rng), size(rng)},
-                    c + Vec3f{size(rng), size(rng), size(rng)}});
-  }
-  return tris;
-}
 
 std::vector<Ray> random_rays(std::size_t n, std::uint32_t seed) {
   std::mt19937 rng(seed);
@@ -32,7 +21,7 @@ std::vector<Ray> random_rays(std::size_t n, std::uint32_t seed) {
 }
 
 TEST(Naive, ClosestHitIsTheMinimumOverAllTriangles) {
-  const auto tris = random_soup(500, 1);
+  const auto tris = test::random_soup(500, 1, 0.2f);
   const NaiveAccelerator accel(tris);
   std::size_t hit_count = 0;
   for (const Ray& ray : random_rays(2000, 2)) {
@@ -66,7 +55,7 @@ TEST(Naive, AnyHitRespectsTmax) {
 }
 
 TEST(Naive, BatchFormsMatchSingleQueries) {
-  const auto tris = random_soup(200, 3);
+  const auto tris = test::random_soup(200, 3, 0.2f);
   const NaiveAccelerator accel(tris);
   const auto rays = random_rays(300, 4);
   std::vector<Hit> hits(rays.size());
@@ -90,7 +79,7 @@ TEST(Naive, EmptySceneNeverHits) {
 }
 
 TEST(Accelerator, FactoryKnowsNaiveAndRejectsUnknownNames) {
-  const auto tris = random_soup(10, 5);
+  const auto tris = test::random_soup(10, 5, 0.2f);
   EXPECT_EQ(make_accelerator("naive", tris)->name(), "naive");
   EXPECT_THROW(make_accelerator("bvh4", tris), std::invalid_argument);
 }

@@ -78,17 +78,6 @@ TEST(CostModel, Eq22ReducesToEq23ForCubicCells) {
 
 // --- the model's identities, measured ---------------------------------------
 
-std::vector<Triangle> soup(std::size_t n, float size, std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> pos(-1.0f, 1.0f), e(-size, size);
-  std::vector<Triangle> tris;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3f c{pos(rng), pos(rng), pos(rng)};
-    tris.push_back({c + Vec3f{e(rng), e(rng), e(rng)}, c + Vec3f{e(rng), e(rng), e(rng)}, c + Vec3f{e(rng), e(rng), e(rng)}});
-  }
-  return tris;
-}
-
 std::vector<Triangle> lowres_bunny() {
   Scene s;
   Warnings w;
@@ -103,7 +92,7 @@ UniformGrid grid_at(std::span<const Triangle> tris, GridResolution res) {
 }
 
 TEST(CastIdentities, UniformLinesHaveKappaOneAndPtotOfEq22) {
-  const auto random = soup(3000, 0.05f, 1);
+  const auto random = test::random_soup(3000, 1, 0.05f);
   const auto bunny = lowres_bunny();
   for (const auto* tris : {&random, &bunny}) {
     for (auto res : {GridResolution{8, 8, 8}, GridResolution{16, 16, 16}, GridResolution{32, 32, 32},
@@ -131,7 +120,7 @@ TEST(CastIdentities, UniformLinesHaveKappaOneAndPtotOfEq22) {
 }
 
 TEST(CastIdentities, SegmentsCrossOnePlusSumOfLengthOverCellCells) {
-  const auto tris = soup(2000, 0.05f, 2);
+  const auto tris = test::random_soup(2000, 2, 0.05f);
   for (auto res : {GridResolution{16, 16, 16}, GridResolution{32, 32, 32}, GridResolution{48, 20, 33}}) {
     const UniformGrid grid = grid_at(tris, res);
     const GridInfo& g = grid.info();
@@ -170,7 +159,7 @@ double mean_theta_over_offsets(std::span<const Triangle> tris, const Vec3d& cell
 }
 
 TEST(CastIdentities, ThetaTotOverRandomOffsetsMatchesEq19AndEq21) {
-  const auto random = soup(3000, 0.08f, 4);
+  const auto random = test::random_soup(3000, 4, 0.08f);
   const Vec3d cell{0.1, 0.07, 0.13};
   const double measured = mean_theta_over_offsets(random, cell, 12, 5);
   std::printf("theta_tot soup: measured %.1f eq19 %.1f eq21 %.1f\n", measured, theta_tot_eq19(random, cell),
@@ -186,7 +175,7 @@ TEST(CastIdentities, ThetaTotOverRandomOffsetsMatchesEq19AndEq21) {
 }
 
 TEST(CastIdentities, CountersDoNotDependOnTheThreadCount) {
-  const auto tris = soup(2000, 0.05f, 8);
+  const auto tris = test::random_soup(2000, 8, 0.05f);
   const UniformGrid grid = grid_at(tris, {20, 20, 20});
   const auto lines = uniform_lines(grid.info().lo, grid.info().hi, 20000, 9);
   const CastMeasurement one = cast_with_counters(grid, lines, GridWalk::closest, 1);
@@ -210,7 +199,7 @@ TEST(Counters, FoldingThirtyTwoBitVisitsLosesNothing) {
   // Fold after every 7 queries instead of 2^31: totals and per-cell counts
   // must match an unfolded run exactly, and merging folded with unfolded
   // counters must add up.
-  const auto tris = soup(500, 0.05f, 11);
+  const auto tris = test::random_soup(500, 11, 0.05f);
   const UniformGrid grid = grid_at(tris, {12, 12, 12});
   const auto lines = uniform_lines(grid.info().lo, grid.info().hi, 1000, 12);
   CellCounters plain(grid.info().resolution), folded(grid.info().resolution, true, 7);
