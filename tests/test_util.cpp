@@ -1,5 +1,7 @@
 #include "test_util.h"
 
+#include "renderer/obj_loader.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -63,6 +65,13 @@ std::string read_file(const std::filesystem::path& p) {
 void write_file(const std::filesystem::path& p, const std::string& text) {
   std::ofstream out(p, std::ios::binary);
   out << text;
+}
+
+std::vector<Triangle> load_mesh(const std::filesystem::path& obj) {
+  Scene s;
+  Warnings w;
+  load_obj(obj, s, w);
+  return s.triangles;
 }
 
 std::vector<Triangle> random_soup(std::size_t n, std::uint32_t seed, float size) {

@@ -47,6 +47,9 @@ RunResult run_kappa(const std::vector<std::string>& args, const std::filesystem:
 std::string read_file(const std::filesystem::path& p);
 void write_file(const std::filesystem::path& p, const std::string& text);
 
+/// The triangles of one OBJ file (loaded as the renderer loads it).
+std::vector<Triangle> load_mesh(const std::filesystem::path& obj);
+
 /// n random triangles in [-1, 1]^3: a centre uniform in the cube, each vertex
 /// within +-size of it on every axis (std::mt19937 seeded with `seed`).
 std::vector<Triangle> random_soup(std::size_t n, std::uint32_t seed, float size = 0.1f);

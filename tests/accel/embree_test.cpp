@@ -159,13 +159,6 @@ std::vector<Ray> tie_rays(std::span<const Triangle> tris, std::size_t n, std::ui
   return rays;
 }
 
-std::vector<Triangle> load_mesh(const std::filesystem::path& obj) {
-  Scene s;
-  Warnings w;
-  load_obj(obj, s, w);
-  return s.triangles;
-}
-
 /// Random rays: no mismatch, the same any_hit, and ties plus grazes at most 1
 /// in 1000 hits. Rays aimed at vertices and edges: ties and grazes are
 /// expected there, but each must be a genuine one.
@@ -248,7 +241,7 @@ TEST(Embree, RandomSoupsAgreeWithNaive) {
 }
 
 TEST(Embree, LowResolutionBunnyAgreesWithNaive) {
-  const auto tris = load_mesh(test::assets_dir() / "bunny-lowres" / "bunny_lowres.obj");
+  const auto tris = test::load_mesh(test::assets_dir() / "bunny-lowres" / "bunny_lowres.obj");
   ASSERT_EQ(tris.size(), 3674u);
   expect_agreement("bunny-lowres", tris, 8000, 2000);
 }
@@ -256,7 +249,7 @@ TEST(Embree, LowResolutionBunnyAgreesWithNaive) {
 TEST(Embree, FullBunnyFromSharedScenesAgreesWithNaive) {
   const auto shared = test::shared_scenes_dir();
   if (shared.empty()) GTEST_SKIP() << "../shared/scenes not present (a user's clone): skipping the 69k-triangle bunny";
-  const auto tris = load_mesh(shared / "bunny" / "bunny.obj");
+  const auto tris = test::load_mesh(shared / "bunny" / "bunny.obj");
   expect_agreement("bunny", tris, 800, 300);
 }
 
@@ -317,7 +310,7 @@ TEST(Embree, EmptySceneMissesAndNonFiniteRaysMiss) {
 }
 
 TEST(Embree, BatchAndParallelQueriesMatchSingleOnes) {
-  const auto tris = load_mesh(test::assets_dir() / "bunny-lowres" / "bunny_lowres.obj");
+  const auto tris = test::load_mesh(test::assets_dir() / "bunny-lowres" / "bunny_lowres.obj");
   const EmbreeAccelerator embree(tris);
   const auto rays = random_rays(tris, 20000, 9);
   std::vector<Hit> batch(rays.size()), parallel(rays.size());

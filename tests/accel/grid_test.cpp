@@ -117,13 +117,6 @@ Rays ray_families(const UniformGrid& grid, std::size_t per_family, std::uint32_t
   return rays;
 }
 
-std::vector<Triangle> load_mesh(const std::filesystem::path& obj) {
-  Scene s;
-  Warnings w;
-  load_obj(obj, s, w);
-  return s.triangles;
-}
-
 std::size_t rays_for(std::size_t triangles) { return std::clamp<std::size_t>(3000000 / (triangles + 100) / 10, 20, 3000); }
 
 TEST(Grid, RandomSoupsFromOneToAHundredThousandTriangles) {
@@ -136,7 +129,7 @@ TEST(Grid, RandomSoupsFromOneToAHundredThousandTriangles) {
 }
 
 TEST(Grid, LowResolutionBunny) {
-  const auto tris = load_mesh(test::assets_dir() / "bunny-lowres" / "bunny_lowres.obj");
+  const auto tris = test::load_mesh(test::assets_dir() / "bunny-lowres" / "bunny_lowres.obj");
   ASSERT_EQ(tris.size(), 3674u);
   for (auto res : {std::optional<GridResolution>{}, std::optional<GridResolution>{{1, 1, 1}},
                    std::optional<GridResolution>{{1, 1, 512}}, std::optional<GridResolution>{{37, 5, 64}}}) {
@@ -149,7 +142,7 @@ TEST(Grid, LowResolutionBunny) {
 TEST(Grid, FullBunnyFromSharedScenes) {
   const auto shared = test::shared_scenes_dir();
   if (shared.empty()) GTEST_SKIP() << "../shared/scenes not present (a user's clone): skipping the 69k-triangle bunny";
-  const auto tris = load_mesh(shared / "bunny" / "bunny.obj");
+  const auto tris = test::load_mesh(shared / "bunny" / "bunny.obj");
   const UniformGrid grid = make_grid(tris);
   expect_agreement(tris, grid, ray_families(grid, 8, 13));
 }

@@ -78,13 +78,6 @@ TEST(CostModel, Eq22ReducesToEq23ForCubicCells) {
 
 // --- the model's identities, measured ---------------------------------------
 
-std::vector<Triangle> lowres_bunny() {
-  Scene s;
-  Warnings w;
-  load_obj(test::assets_dir() / "bunny-lowres" / "bunny_lowres.obj", s, w);
-  return s.triangles;
-}
-
 UniformGrid grid_at(std::span<const Triangle> tris, GridResolution res) {
   GridOptions o;
   o.resolution = res;
@@ -93,7 +86,7 @@ UniformGrid grid_at(std::span<const Triangle> tris, GridResolution res) {
 
 TEST(CastIdentities, UniformLinesHaveKappaOneAndPtotOfEq22) {
   const auto random = test::random_soup(3000, 1, 0.05f);
-  const auto bunny = lowres_bunny();
+  const auto bunny = test::load_mesh(test::assets_dir() / "bunny-lowres" / "bunny_lowres.obj");
   for (const auto* tris : {&random, &bunny}) {
     for (auto res : {GridResolution{8, 8, 8}, GridResolution{16, 16, 16}, GridResolution{32, 32, 32},
                      GridResolution{64, 64, 64}, GridResolution{40, 10, 25}}) {
@@ -166,7 +159,7 @@ TEST(CastIdentities, ThetaTotOverRandomOffsetsMatchesEq19AndEq21) {
               theta_tot_eq21(random, cell));
   EXPECT_NEAR(measured / theta_tot_eq19(random, cell), 1.0, 0.02);
   EXPECT_NEAR(measured / theta_tot_eq21(random, cell), 1.0, 0.02);  // random orientation holds for a soup
-  const auto bunny = lowres_bunny();
+  const auto bunny = test::load_mesh(test::assets_dir() / "bunny-lowres" / "bunny_lowres.obj");
   const Vec3d bunny_cell{0.4, 0.35, 0.3};
   const double bunny_measured = mean_theta_over_offsets(bunny, bunny_cell, 12, 6);
   std::printf("theta_tot bunny: measured %.1f eq19 %.1f eq21 %.1f\n", bunny_measured, theta_tot_eq19(bunny, bunny_cell),
