@@ -65,6 +65,22 @@ struct GridInfo {
 /// chord (the paper's lines and segments, for statistics).
 enum class GridWalk { closest, any, whole };
 
+/// What one walk did, counted in registers and handed to the recorder once
+/// at the end.
+struct WalkCounts {
+  std::uint64_t cells = 0;  ///< cells visited
+  std::uint64_t refs = 0;   ///< sum of Theta_i over them (before mailboxing)
+  std::uint64_t tests = 0;  ///< triangle tests made
+  std::uint64_t skips = 0;  ///< tests the mailbox avoided
+  /// The model's cells for the walked segment, 1 + sum_a |d_a| len / l_a
+  /// (seed paper eq 24 per axis), over the part of [tmin, end] inside the
+  /// grid, where end is the closest hit for closest-hit walks and tmax
+  /// otherwise (an any-hit walk's stop is not known: an upper bound); 0 if
+  /// that part is empty.
+  double predicted_cells = 0;
+};
+
+
 class UniformGrid final : public Accelerator {
  public:
   /// Throws std::invalid_argument if the grid would exceed options.max_bytes

@@ -13,12 +13,17 @@
 
 namespace kappa {
 
-/// A recorder that records nothing: every call compiles away.
+/// A recorder that records nothing: every call compiles away, and so do the
+/// walk's counts, which nothing reads.
+///
+/// The recorder interface: cell(index, ix, iy, iz) on entering each cell,
+/// test() before each triangle test and hit() when one finds a (new closest)
+/// hit, all in the cell last entered; finish(counts) once at the end.
 struct NoRecorder {
-  void cell(std::uint64_t, int, int, int, std::uint32_t) {}
+  void cell(std::uint64_t, int, int, int) {}
   void test() {}
-  void skip() {}
   void hit() {}
+  void finish(const WalkCounts&) {}
 };
 
 namespace detail {
@@ -83,6 +88,7 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
   // which covers origins within a few scene diagonals; see grid.h).
   const double margin = std::max(g.margin, kMarginUlps * double(FLT_EPSILON) * double(max_component(abs(ray.o))));
   const double margin_t = margin / length(d);
+  const double t_in = t0, t_out = t1;  // the ray's part inside the grid box
   t0 = std::max(double(ray.tmin), t0 - margin_t);
   if (t0 > t1 + margin_t) return false;
 
@@ -119,6 +125,18 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
 
   const PreparedRay prepared(ray);
   detail::Mailbox mailbox;
+  WalkCounts counts;
+  const auto done = [&](bool result) {
+    // Dead code for recorders that ignore it (NoRecorder).
+    const double end = Mode == GridWalk::closest ? std::min(t_out, double(best.t)) : t_out;
+    if (end > t_in) {
+      const double len = end - t_in;
+      counts.predicted_cells = 1.0 + std::abs(d.x) * len * m_inv_cell.x + std::abs(d.y) * len * m_inv_cell.y +
+                               std::abs(d.z) * len * m_inv_cell.z;
+    }
+    recorder.finish(counts);
+    return result;
+  };
   const double t_end = t1 + margin_t;
   // The walk's state in scalars, so that it stays in registers.
   double tx = t_next[0], ty = t_next[1], tz = t_next[2];
@@ -127,19 +145,22 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
   while (true) {
     const bool occupied = (m_occupied[std::size_t(c) >> 6] >> (std::size_t(c) & 63)) & 1;
     const std::uint32_t begin = occupied ? m_offsets[std::size_t(c)] : 0, end = occupied ? m_offsets[std::size_t(c) + 1] : 0;
-    recorder.cell(std::uint64_t(c), ix, iy, iz, end - begin);
+    recorder.cell(std::uint64_t(c), ix, iy, iz);
+    ++counts.cells;
+    counts.refs += end - begin;
     for (std::uint32_t k = begin; k < end; ++k) {
       const TriangleId id = m_refs[k];
       if (mailbox.seen(id)) {
-        recorder.skip();
+        ++counts.skips;
         continue;
       }
       recorder.test();
+      ++counts.tests;
       if constexpr (AnyHit) {
         float t, b0, b1, b2;
         if (intersect_triangle(prepared, m_triangles[id], ray.tmin, ray.tmax, t, b0, b1, b2)) {
           recorder.hit();
-          return true;
+          return done(true);
         }
       } else {
         const TriangleId before = best.triangle;
@@ -153,7 +174,7 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
     // t_end is, and an axis that does not move is never the nearest.
     const double t_exit = std::min(tx, std::min(ty, tz));
     if constexpr (!AnyHit && !Whole) {
-      if (best.valid() && double(best.t) + margin_t < t_exit) return true;
+      if (best.valid() && double(best.t) + margin_t < t_exit) return done(true);
     }
     if (!(t_exit <= t_end)) break;
     if (tx <= ty && tx <= tz) {
@@ -173,7 +194,7 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
       tz += dz;
     }
   }
-  return best.valid();
+  return done(best.valid());
 }
 
 template <class Recorder>

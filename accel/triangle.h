@@ -46,7 +46,10 @@ struct PreparedRay {
 /// Intersects one triangle. On a hit with tmin < t <= tmax, fills t and the
 /// barycentrics and returns true. Edges and vertices shared by two triangles
 /// are hit by at least one of them (no ray slips through a closed mesh).
-inline bool intersect_triangle(const PreparedRay& r, const Triangle& tri, float tmin, float tmax,
+/// Always inlined: it is the innermost call of every walk, and GCC's size
+/// limits otherwise leave it a call in some instantiations (the counting
+/// walks of a render), which cost them 20 % more instructions per test.
+[[gnu::always_inline]] inline bool intersect_triangle(const PreparedRay& r, const Triangle& tri, float tmin, float tmax,
                                float& t_out, float& b0_out, float& b1_out, float& b2_out) {
   // Vertices relative to the origin, permuted so the ray runs along z. Array
   // indexing is cheaper than selecting components by comparisons.
@@ -115,7 +118,7 @@ inline bool intersect_triangle(const PreparedRay& r, const Triangle& tri, float 
 
 /// Closest-hit update shared by the exact accelerators: tests one triangle and
 /// keeps it if it is closer under closer_than's tie rule.
-inline void test_closest(const PreparedRay& r, const Triangle& tri, TriangleId id, float tmin, Hit& best) {
+[[gnu::always_inline]] inline void test_closest(const PreparedRay& r, const Triangle& tri, TriangleId id, float tmin, Hit& best) {
   float t, b0, b1, b2;
   // The range test before the division rounds differently from t itself, so
   // a triangle at exactly best.t could be cut by it, and which of two equal-t

@@ -21,14 +21,13 @@ void write_cell_map(AtomicOutput& out, const UniformGrid& grid, const RenderCoun
   const GridResolution& r = grid.info().resolution;
   const int u_axis = axis == 0 ? 1 : 0, v_axis = axis == 2 ? 1 : 2;  // image x and y
   const int w = r[u_axis], h = r[v_axis], depth = r[axis];
+  // p_i over the rays counted per cell (every ray, or those of the sampled paths).
   std::uint64_t rays = 0;
-  for (const CellCounters& c : counters.classes) rays += c.totals.rays;
+  for (const CellCounters& c : counters.classes) rays += c.per_cell_queries();
   std::vector<double> p(std::size_t(w) * std::size_t(h)), theta(p.size());
   std::vector<std::uint64_t> all_visits(r.cells(), 0);
-  for (const CellCounters& cls : counters.classes) {
-    const std::vector<std::uint64_t> v = cls.visits();
-    for (std::size_t i = 0; i < v.size(); ++i) all_visits[i] += v[i];
-  }
+  for (const CellCounters& cls : counters.classes)
+    for (std::size_t i = 0; i < all_visits.size(); ++i) all_visits[i] += cls.visits_at(i);
   for (int v = 0; v < h; ++v) {
     for (int u = 0; u < w; ++u) {
       for (int k = 0; k < depth; ++k) {

@@ -57,6 +57,10 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
   render.add_option("--stats", o.stats, "count cells, tests and hits per ray class (grid only)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  render.add_option("--cell-sample", o.cell_sample,
+                    "count per cell for 1 path in N (auto: every path on grids of up to 65536 cells, 1 in 64 on larger ones); "
+                    "totals always count every ray")
+      ->capture_default_str();
   render.add_option("--report", o.report, "write the per-frame JSON report (stats/README.md) here");
   render.add_option("--cell-map", o.cell_map, "per-cell p_i and Theta_i projected along an axis, to F.exr or F.png");
   render.add_option("--cell-map-axis", o.cell_map_axis, "projection axis of the cell map")

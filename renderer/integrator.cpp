@@ -188,6 +188,7 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
         const QueryWork before = film.cost_cells.empty() ? QueryWork{} : queries.work();
         for (int s = 0; s < settings.spp; ++s) {
           Rng rng(settings.seed, pixel, std::uint64_t(s));
+          queries.begin_path(pixel, std::uint64_t(s));
           const float fx = rng.uniform(), fy = rng.uniform();
           FirstHit first;
           Vec3f L = tracer.radiance(camera.generate_ray(float(x) + fx, float(y) + fy), rng, first, queries);
@@ -232,6 +233,42 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
   return result;
 }
 
+#ifndef KAPPA_NO_STATS
+/// The frame with statistics: the grid walked with per-class counters.
+RenderResult render_counting(const Scene& scene, const UniformGrid& grid, const RenderSettings& settings, Film& film,
+                             const ProgressCallback& progress) {
+  RenderResult result;
+  // Per-cell arrays per class and per thread must fit beside the grid in
+  // --grid-max-bytes, with what the report adds (64-bit visits folded per
+  // class, and one 64-bit array for the classes together); otherwise only
+  // per-class totals are kept.
+  const std::uint64_t cells = grid.info().resolution.cells();
+  const std::uint64_t threads =
+      std::uint64_t(settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency());
+  const std::uint64_t need = per_cell_stats_bytes(cells, threads);
+  const bool per_cell = grid.info().bytes + need <= settings.stats_max_bytes;
+  const std::uint64_t every = settings.cell_sample > 0 ? settings.cell_sample : auto_cell_sample(cells);
+  const CellSampling sampling{per_cell ? every : 1, settings.seed};
+  tbb::enumerable_thread_specific<RenderCounters> per_thread(
+      [&] { return RenderCounters(grid.info().resolution, per_cell); });
+  result = render_tiles(scene, settings, film, progress,
+                        [&] { return CountingQueries(grid, per_thread.local(), sampling); });
+  // Merge into one thread's counters: no further copy of the arrays.
+  std::shared_ptr<RenderCounters> merged;
+  for (RenderCounters& c : per_thread) {
+    if (!merged) merged = std::make_shared<RenderCounters>(std::move(c));
+    else merged->merge(c);
+  }
+  if (!merged) merged = std::make_shared<RenderCounters>(grid.info().resolution, per_cell);
+  result.counters = merged;
+  result.cell_sample = sampling.every;
+  if (!per_cell)
+    result.stats_note = "per-cell statistics refused: " + std::to_string(need >> 20) +
+                        " MiB of counters would exceed --grid-max-bytes; per-class totals only";
+  return result;
+}
+#endif
+
 }  // namespace
 
 RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSettings& settings, Film& film,
@@ -241,28 +278,12 @@ RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSe
   if (settings.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(settings.threads));
 
   RenderResult result;
-  const auto* grid = dynamic_cast<const UniformGrid*>(&accel);
-  if (settings.stats && grid) {
-    // Per-cell arrays per class and per thread must fit beside the grid in
-    // --grid-max-bytes; otherwise only per-class totals are kept.
-    const std::uint64_t cells = grid->info().resolution.cells();
-    const std::uint64_t threads =
-        std::uint64_t(settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency());
-    const std::uint64_t need = cells * (sizeof(std::uint32_t) + 2 * sizeof(std::uint64_t)) * kRenderClasses * threads;
-    const bool per_cell = grid->info().bytes + need <= settings.stats_max_bytes;
-    tbb::enumerable_thread_specific<RenderCounters> per_thread(
-        [&] { return RenderCounters(grid->info().resolution, per_cell); });
-    result = render_tiles(scene, settings, film, progress,
-                          [&] { return CountingQueries(*grid, per_thread.local()); });
-    auto merged = std::make_shared<RenderCounters>(grid->info().resolution, per_cell);
-    per_thread.combine_each([&](const RenderCounters& c) { merged->merge(c); });
-    result.counters = merged;
-    if (!per_cell)
-      result.stats_note = "per-cell statistics refused: " + std::to_string(need >> 20) +
-                          " MiB of counters would exceed --grid-max-bytes; per-class totals only";
-  } else {
+#ifndef KAPPA_NO_STATS  // a build without statistics has no trace of them here
+  if (const auto* grid = dynamic_cast<const UniformGrid*>(&accel); settings.stats && grid)
+    result = render_counting(scene, *grid, settings, film, progress);
+  else
+#endif
     result = render_tiles(scene, settings, film, progress, [&] { return PlainQueries{accel}; });
-  }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

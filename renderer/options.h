@@ -22,8 +22,13 @@ struct RenderOptions {
   std::string out;              ///< default out/<scene name>.exr
   std::string aov;              ///< comma list of albedo, normal, depth
   bool quiet = false;
+#ifdef KAPPA_NO_STATS
+  std::string stats = "off";    ///< a build without statistics (-DKAPPA_STATS=OFF) has only off
+#else
   std::string stats = "on";     ///< per-class counters during the render (grid only): on | off
+#endif
   std::string report;           ///< per-frame JSON report path
+  std::string cell_sample = "auto";  ///< per-cell counts for 1 path in N: auto | N
   std::string cell_map;         ///< --cell-map F.exr|png
   std::string cell_map_axis = "y";  ///< projection axis of the cell map
   std::string calibration;      ///< T0/Ts/Th file (default: kappa_calibration.json beside the executable)

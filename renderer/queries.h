@@ -9,6 +9,7 @@
 
 #include "accel/accel.h"
 #include "accel/grid_traverse.h"
+#include "sampling.h"
 #include "stats/cost_model.h"
 #include "stats/render_counters.h"
 
@@ -24,6 +25,7 @@ struct PlainQueries {
   std::uint64_t rays = 0;
 
   QueryWork work() const { return {}; }
+  void begin_path(std::uint64_t /*pixel*/, std::uint64_t /*sample*/) {}
 
   std::optional<Hit> closest(const Ray& r, int /*depth*/) {
     ++rays;
@@ -35,9 +37,30 @@ struct PlainQueries {
   }
 };
 
+/// Which paths count per cell: every path, or 1 in `every` drawn by a hash
+/// of (seed, pixel, sample), so the choice is the same whatever the thread
+/// count. Per-class totals always count every ray.
+struct CellSampling {
+  std::uint64_t every = 1;
+  std::uint64_t seed = 0;
+
+  bool counts(std::uint64_t pixel, std::uint64_t sample) const {
+    if (every <= 1) return true;
+    return mix64(mix64(seed ^ 0x6A09E667F3BCC909ull) ^ mix64(pixel) ^ (sample * 0x9E3779B97F4A7C15ull)) % every == 0;
+  }
+};
+
 class CountingQueries {
  public:
-  CountingQueries(const UniformGrid& grid, RenderCounters& counters) : m_grid(grid), m_counters(counters) {}
+  /// Per-cell counts are kept if `counters` has per-cell arrays, for the
+  /// paths `sampling` picks.
+  CountingQueries(const UniformGrid& grid, RenderCounters& counters, CellSampling sampling = {})
+      : m_grid(grid), m_counters(counters), m_sampling(sampling), m_per_cell(counters.classes[0].per_cell()) {}
+
+  /// Chooses, once per path, whether its rays are counted per cell.
+  void begin_path(std::uint64_t pixel, std::uint64_t sample) {
+    m_path_per_cell = m_per_cell && m_sampling.counts(pixel, sample);
+  }
 
   std::uint64_t rays = 0;
 
@@ -56,12 +79,16 @@ class CountingQueries {
     CellCounters& c = m_counters.classes[k];
     std::optional<Hit> hit;
     timed(k, [&] {
-      CellCounters::Tally tally(c);
-      hit = m_grid.closest_hit(r, tally);
+      if (m_path_per_cell) {
+        CellCounters::Tally tally(c);
+        hit = m_grid.closest_hit(r, tally);
+      } else {
+        CellCounters::TotalsTally tally(c);
+        hit = m_grid.closest_hit(r, tally);
+      }
     });
     ++c.totals.rays;
     c.totals.hits += hit.has_value();
-    predict(k, r, hit ? hit->t : r.tmax);
     return hit;
   }
 
@@ -70,12 +97,16 @@ class CountingQueries {
     CellCounters& c = m_counters.classes[kShadow];
     bool occluded = false;
     timed(kShadow, [&] {
-      CellCounters::Tally tally(c);
-      occluded = m_grid.any_hit(r, tally);
+      if (m_path_per_cell) {
+        CellCounters::Tally tally(c);
+        occluded = m_grid.any_hit(r, tally);
+      } else {
+        CellCounters::TotalsTally tally(c);
+        occluded = m_grid.any_hit(r, tally);
+      }
     });
     ++c.totals.rays;
     c.totals.hits += occluded;
-    predict(kShadow, r, r.tmax);  // where an any-hit walk stopped is not known: an upper bound
     return occluded;
   }
 
@@ -93,31 +124,11 @@ class CountingQueries {
     m_counters.sampled_seconds[k] += 64.0 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
-  /// Predicted cells for the part of the ray inside the grid, up to `end`.
-  void predict(RenderClass k, const Ray& r, float end) {
-    const GridInfo& g = m_grid.info();
-    // The same early-outs as the walk: these rays visit no cell.
-    if (!is_finite(r.o) || !is_finite(r.d) || r.d == Vec3f{0, 0, 0} || !(r.tmin <= end)) return;
-    double t0 = r.tmin, t1 = end;
-    for (int a = 0; a < 3; ++a) {
-      const double d = r.d[a], o = r.o[a];
-      if (d == 0) {
-        if (o < g.lo[a] || o > g.hi[a]) return;
-        continue;
-      }
-      double tn = (g.lo[a] - o) / d, tf = (g.hi[a] - o) / d;
-      if (tn > tf) std::swap(tn, tf);
-      t0 = std::max(t0, tn);
-      t1 = std::min(t1, tf);
-    }
-    if (!(t1 > t0)) return;
-    const double cells = cells_for_segment(Vec3d(r.d) * (t1 - t0), g.cell_size);
-    if (!std::isfinite(cells)) return;
-    m_counters.predicted_fixed[k] += std::uint64_t(std::llround(cells * 1024.0));
-  }
-
   const UniformGrid& m_grid;
   RenderCounters& m_counters;
+  CellSampling m_sampling;
+  bool m_per_cell;
+  bool m_path_per_cell = false;
 };
 
 }  // namespace kappa

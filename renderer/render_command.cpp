@@ -4,6 +4,7 @@
 #include <tbb/info.h>
 #include <unistd.h>
 
+#include <charconv>
 #include <chrono>
 #include <optional>
 #include <cstdio>
@@ -72,6 +73,19 @@ int run_render(const RenderOptions& options) {
   if (const auto ext = std::filesystem::path(options.cell_map).extension(); !options.cell_map.empty() && ext != ".exr" &&
                                                                             ext != ".png")
     throw InputError("--cell-map: '" + options.cell_map + "' must end in .exr or .png");
+#ifdef KAPPA_NO_STATS
+  if (options.stats == "on") throw InputError("--stats on: this kappa was built without statistics (-DKAPPA_STATS=OFF)");
+#endif
+  std::uint64_t cell_sample = 0;  // auto
+  if (options.cell_sample != "auto") {
+    std::uint64_t n = 0;
+    const char* first = options.cell_sample.data();
+    const char* last = first + options.cell_sample.size();
+    const auto [end, ec] = std::from_chars(first, last, n);
+    if (ec != std::errc() || end != last || n < 1 || n > (std::uint64_t(1) << 20))
+      throw InputError("--cell-sample: '" + options.cell_sample + "' is neither auto nor a whole number from 1 to 1048576");
+    cell_sample = n;
+  }
   if (aov.cost && (options.stats != "on" || options.accel != "grid"))
     throw InputError("--aov cost: needs --accel grid and --stats on (it counts the grid's cells and tests)");
   if (!options.out.empty() && std::filesystem::path(options.out).extension() != ".exr")
@@ -124,6 +138,7 @@ int run_render(const RenderOptions& options) {
   settings.aov = aov;
   settings.stats = options.stats == "on";
   settings.stats_max_bytes = options.grid_max_bytes > 0 ? options.grid_max_bytes : default_grid_max_bytes();
+  settings.cell_sample = cell_sample;
   const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
 
   Film film(scene.width, scene.height, aov);

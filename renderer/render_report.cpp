@@ -10,23 +10,21 @@
 namespace kappa {
 namespace {
 
-/// One class's measurement in the shape the report's sections take.
-CastMeasurement measurement(const CellCounters& counters, const std::vector<std::uint32_t>& theta,
-                            std::uint64_t predicted_fixed, double seconds) {
-  CastMeasurement m;
-  m.counters = counters;
-  m.theta = theta;
-  const std::uint64_t rays = counters.totals.rays;
-  if (counters.per_cell()) {
-    m.collusion = collusion(counters.visits(), theta, rays);
-  } else {  // totals only: Theta's moments as usual, what needs p_i undefined
-    m.collusion = collusion(std::vector<std::uint64_t>(theta.size(), 0), theta, 0);
-    m.collusion.N_r = rays;
-    m.collusion.p_tot = rays > 0 ? double(counters.totals.cells) / double(rays) : 0.0;
-    m.collusion.p_avg = theta.empty() ? 0.0 : m.collusion.p_tot / double(theta.size());
-    m.collusion.sigma_p = std::numeric_limits<double>::quiet_NaN();  // becomes null
+/// One class's summary: p_i from the per-cell counts (of the sampled paths,
+/// if per-cell counting was sampled), exact totals otherwise.
+ClassSummary summary(const ClassTotals& totals, std::uint64_t per_cell_rays, std::span<const std::uint64_t> visits,
+                     const std::vector<std::uint32_t>& theta, double seconds) {
+  ClassSummary m;
+  m.totals = totals;
+  m.per_cell_rays = per_cell_rays;
+  const std::uint64_t rays = totals.rays;
+  if (!visits.empty()) {
+    m.collusion = collusion_sampled(visits, theta, per_cell_rays, rays, totals.cells, totals.refs);
+  } else {  // totals only: Theta's moments and what the totals give; what needs p_i undefined
+    m.collusion = collusion_sampled(std::vector<std::uint64_t>(theta.size(), 0), theta, 0, rays, totals.cells,
+                                    totals.refs);
   }
-  m.cells_per_ray_predicted = rays > 0 ? double(predicted_fixed) / 1024.0 / double(rays) : 0.0;
+  m.cells_per_ray_predicted = rays > 0 ? totals.predicted_cells() / double(rays) : 0.0;
   m.time_s = seconds;
   return m;
 }
@@ -61,17 +59,27 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
   if (grid && result.counters) {
     const RenderCounters& rc = *result.counters;
     const std::vector<std::uint32_t> theta = occupancies(*grid);
-    CellCounters all(grid->info().resolution, rc.classes[0].per_cell());
-    std::uint64_t all_predicted = 0;
+    const bool per_cell = rc.classes[0].per_cell();
+    std::vector<std::uint64_t> visits, all_visits(per_cell ? theta.size() : 0, 0);
+    ClassTotals all;
+    std::uint64_t all_per_cell_rays = 0;
     double all_seconds = 0;
     for (std::size_t k = 0; k < kRenderClasses; ++k) {
-      rays[kRenderClassNames[k]] =
-          ray_class_section(measurement(rc.classes[k], theta, rc.predicted_fixed[k], rc.sampled_seconds[k]), std::nullopt);
-      all.merge(rc.classes[k]);
-      all_predicted += rc.predicted_fixed[k];
+      const CellCounters& c = rc.classes[k];
+      if (per_cell) {
+        visits = c.visits();
+        for (std::size_t i = 0; i < visits.size(); ++i) all_visits[i] += visits[i];
+      }
+      rays[kRenderClassNames[k]] = ray_class_section(
+          summary(c.totals, c.per_cell_queries(), visits, theta, rc.sampled_seconds[k]),
+          std::nullopt);
+      all += c.totals;
+      all_per_cell_rays += c.per_cell_queries();
       all_seconds += rc.sampled_seconds[k];
     }
-    rays["all"] = ray_class_section(measurement(all, theta, all_predicted, all_seconds), std::nullopt);
+    rays["all"] = ray_class_section(summary(all, all_per_cell_rays, all_visits, theta, all_seconds),
+                                    std::nullopt);
+    j["stats"] = {{"per_cell", per_cell}, {"cell_sample", result.cell_sample}};
     if (!result.stats_note.empty()) j["stats_note"] = result.stats_note;
   }
   j["rays"] = rays;

@@ -1,6 +1,8 @@
 #include "collusion.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace kappa {
 
@@ -42,6 +44,52 @@ CollusionStats collusion(std::span<const std::uint64_t> visits, std::span<const 
     } else {
       s.kappa_eq25 = 1.0;  // uniform p or Theta: no collusion, as eq 8 gives too
     }
+  }
+  return s;
+}
+
+CollusionStats collusion_sampled(std::span<const std::uint64_t> visits, std::span<const std::uint32_t> theta,
+                                 std::uint64_t sample_rays, std::uint64_t rays, std::uint64_t cells,
+                                 std::uint64_t refs) {
+  if (sample_rays >= rays) return collusion(visits, theta, rays);
+  // The sample alone, as if it were the whole class: its Theta moments are
+  // the grid's, its p moments and covariance are estimates.
+  CollusionStats s = collusion(visits, theta, sample_rays);
+  const double p_avg_sample = s.p_avg;
+  s.N_r = rays;
+  if (s.N_c == 0) return s;
+  const double n = double(s.N_c);
+  const double Rs = double(sample_rays);
+  const double q = rays > 0 ? Rs / double(rays) : 0.0;
+  // Exact, from the totals of every ray.
+  s.p_tot = rays > 0 ? double(cells) / double(rays) : 0.0;
+  s.p_avg = s.p_tot / n;
+  s.refs_per_ray = rays > 0 ? double(refs) / double(rays) : 0.0;
+  s.kappa.reset();
+  if (s.p_tot > 0 && s.theta_tot > 0) s.kappa = n * s.refs_per_ray / (s.p_tot * s.theta_tot);
+  if (sample_rays == 0) {
+    s.sigma_p = std::numeric_limits<double>::quiet_NaN();  // nothing sampled: unknown (null in reports)
+    s.r.reset();
+    s.kappa_eq25.reset();
+    return s;
+  }
+  // sigma_p from the unbiased estimate of sum_i p_i^2.
+  double sum_p2 = 0;
+  for (const std::uint64_t v : visits) {
+    const double x = double(v);
+    sum_p2 += x * x - (1.0 - q) * x;
+  }
+  sum_p2 /= Rs * Rs;
+  // About the sample's own mean: the sample's size then cancels out of the
+  // spread, where the exact mean would leave its noise in it.
+  s.sigma_p = std::sqrt(std::max(0.0, sum_p2 / n - p_avg_sample * p_avg_sample));
+  // r and kappa_eq25 from the sample's covariance (collusion() above),
+  // rescaled to the estimated sigma_p.
+  if (s.kappa_eq25 && s.r && s.sigma_p > 0) {
+    const double cov = (*s.kappa_eq25 - 1.0) * p_avg_sample * s.theta_avg;
+    s.r = cov / (s.sigma_p * s.sigma_theta);
+  } else if (s.sigma_p == 0) {
+    s.r.reset();
   }
   return s;
 }

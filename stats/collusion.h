@@ -27,4 +27,18 @@ struct CollusionStats {
 CollusionStats collusion(std::span<const std::uint64_t> visits, std::span<const std::uint32_t> theta,
                          std::uint64_t rays);
 
+/// The same when per-cell visits were counted for only `sample_rays` of the
+/// class's `rays` rays (whole paths drawn with probability q = sample_rays /
+/// rays), while the class's totals cover every ray: p_tot, p_avg, refs_per_ray
+/// and kappa (eq 8, as N_c * refs / (cells * theta_tot)) are then exact;
+/// sigma_p, r and kappa_eq25 are estimated from the sample. sigma_p^2 uses
+/// the unbiased estimate of sum_i v_i^2 from binomially thinned counts X_i,
+/// sum_i (X_i^2 - (1 - q) X_i) / q^2, which is exact in expectation when no
+/// path sends two rays of the class through one cell; kappa_eq25 is the
+/// sample's own ratio, so its distance from kappa shows the sampling error.
+/// With sample_rays == rays it is collusion(visits, theta, rays).
+CollusionStats collusion_sampled(std::span<const std::uint64_t> visits, std::span<const std::uint32_t> theta,
+                                 std::uint64_t sample_rays, std::uint64_t rays, std::uint64_t cells,
+                                 std::uint64_t refs);
+
 }  // namespace kappa

@@ -9,6 +9,7 @@ ClassTotals& ClassTotals::operator+=(const ClassTotals& o) {
   mailbox_skips += o.mailbox_skips;
   refs += o.refs;
   hits += o.hits;
+  predicted_fixed += o.predicted_fixed;
   return *this;
 }
 
@@ -40,11 +41,12 @@ void CellCounters::merge(const CellCounters& other) {
     }
   }
   totals += other.totals;
+  m_per_cell_queries += other.m_per_cell_queries;
 }
 
 std::vector<std::uint64_t> CellCounters::visits() const {
   std::vector<std::uint64_t> v(m_visits.size());
-  for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::uint64_t(m_visits[i]) + (m_visits_64.empty() ? 0 : m_visits_64[i]);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = visits_at(i);
   return v;
 }
 

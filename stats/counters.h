@@ -1,14 +1,16 @@
 // Counters for one class of rays walked through the uniform grid: per cell
 // (visits -> p_i, triangle tests, hits) and in total. A CellCounters is the
 // Recorder of UniformGrid's templated walks (accel/grid_traverse.h): one per
-// thread, merged once at the end. Counts are kept in locals during a ray and
-// added per cell, never shared between threads.
+// thread, merged once at the end. Totals are counted by the walk in
+// registers and added once per ray; per-cell counts are added per cell,
+// never shared between threads.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
-#include "accel/grid_resolution.h"
+#include "accel/grid.h"
 
 namespace kappa {
 
@@ -20,6 +22,11 @@ struct ClassTotals {
   std::uint64_t mailbox_skips = 0;  ///< tests avoided by the mailbox
   std::uint64_t refs = 0;           ///< sum of Theta_i over visited cells (before mailboxing)
   std::uint64_t hits = 0;           ///< rays that hit something
+  /// Sum over rays of the model's predicted cells (WalkCounts) in 1/1024
+  /// units: an integer, so totals do not depend on how threads split rays.
+  std::uint64_t predicted_fixed = 0;
+
+  double predicted_cells() const { return double(predicted_fixed) / 1024.0; }
 
   ClassTotals& operator+=(const ClassTotals& o);
 };
@@ -39,48 +46,61 @@ class CellCounters {
   bool per_cell() const { return !m_visits.empty(); }
 
   /// The recorder of one query (UniformGrid's templated walks): counts in
-  /// locals, added to the totals once at the end. Visits, written at every
-  /// step, are 32-bit and kept apart from tests and hits (written only when
-  /// a triangle is tested): on grids of millions of cells the cache lines
-  /// those writes touch are most of what statistics cost.
-  class Tally {
+  /// locals, added to the totals once at the end. With PerCell (the choice is
+  /// a template argument, made per frame or per path, never per cell) it also
+  /// counts per cell: visits, written at every step, are 32-bit and kept
+  /// apart from tests and hits (written only when a triangle is tested): on
+  /// grids of millions of cells the cache lines those writes touch are most
+  /// of what statistics cost.
+  template <bool PerCell>
+  class BasicTally {
    public:
-    explicit Tally(CellCounters& owner)
-        : m_owner(owner), m_visits(owner.per_cell() ? owner.m_visits.data() : nullptr) {}
-    ~Tally() {
-      ClassTotals& t = m_owner.totals;
-      t.cells += m_cells;
-      t.refs += m_refs;
-      t.tests += m_tests;
-      t.mailbox_skips += m_skips;
-      // A ray visits a cell at most once, so no 32-bit count can overflow
-      // before 2^32 - 1 queries: fold into 64 bits before that.
-      if (++m_owner.m_queries_since_fold == m_owner.m_fold_every) m_owner.fold();
+    explicit BasicTally(CellCounters& owner) : m_owner(owner) {}
+    ~BasicTally() {
+      if constexpr (PerCell) {
+        ++m_owner.m_per_cell_queries;
+        // A ray visits a cell at most once, so no 32-bit count can overflow
+        // before 2^32 - 1 queries: fold into 64 bits before that.
+        if (++m_owner.m_queries_since_fold == m_owner.m_fold_every) m_owner.fold();
+      }
     }
-    Tally(const Tally&) = delete;
-    Tally& operator=(const Tally&) = delete;
+    BasicTally(const BasicTally&) = delete;
+    BasicTally& operator=(const BasicTally&) = delete;
 
-    void cell(std::uint64_t c, int /*ix*/, int /*iy*/, int /*iz*/, std::uint32_t theta) {
-      ++m_cells;
-      m_refs += theta;
-      m_current = c;
-      if (m_visits) ++m_visits[c];
+    void cell(std::uint64_t c, int /*ix*/, int /*iy*/, int /*iz*/) {
+      if constexpr (PerCell) {
+        m_current = c;
+        ++m_owner.m_visits[c];
+      }
     }
     void test() {
-      ++m_tests;
-      if (m_visits) ++m_owner.m_tests[m_current];
+      if constexpr (PerCell) ++m_owner.m_tests[m_current];
     }
-    void skip() { ++m_skips; }
     void hit() {
-      if (m_visits) ++m_owner.m_hits[m_current];
+      if constexpr (PerCell) ++m_owner.m_hits[m_current];
+    }
+    /// The walk's own counts (kept in registers during the walk).
+    void finish(const WalkCounts& w) {
+      ClassTotals& t = m_owner.totals;
+      t.cells += w.cells;
+      t.refs += w.refs;
+      t.tests += w.tests;
+      t.mailbox_skips += w.skips;
+      t.predicted_fixed += std::uint64_t(std::llround(w.predicted_cells * 1024.0));
     }
 
    private:
     CellCounters& m_owner;
-    std::uint32_t* m_visits;
     std::uint64_t m_current = 0;
-    std::uint64_t m_cells = 0, m_refs = 0, m_tests = 0, m_skips = 0;
   };
+  /// Counts per cell; only for counters with per_cell().
+  using Tally = BasicTally<true>;
+  /// Counts only the totals.
+  using TotalsTally = BasicTally<false>;
+
+  /// Queries counted per cell (all of them unless per-cell counting was
+  /// sampled): the denominator of p_i.
+  std::uint64_t per_cell_queries() const { return m_per_cell_queries; }
 
   /// Adds `other` into this (the per-thread merge).
   void merge(const CellCounters& other);
@@ -88,6 +108,11 @@ class CellCounters {
   /// Per cell, in cell order: rays that visited it (p_i * rays), triangle
   /// tests made in it, tests in it that found a (new closest) hit.
   std::vector<std::uint64_t> visits() const;
+  /// The visits of cell i, without copying the array.
+  std::uint64_t visits_at(std::size_t i) const {
+    return std::uint64_t(m_visits[i]) + (m_visits_64.empty() ? 0 : m_visits_64[i]);
+  }
+  std::size_t cell_count() const { return m_visits.size(); }
   const std::vector<std::uint64_t>& tests_in() const { return m_tests; }
   const std::vector<std::uint64_t>& hits_in() const { return m_hits; }
 
@@ -101,6 +126,7 @@ class CellCounters {
   std::vector<std::uint64_t> m_visits_64;  ///< folded visits (empty until the first fold)
   std::vector<std::uint64_t> m_tests, m_hits;
   std::uint64_t m_queries_since_fold = 0;
+  std::uint64_t m_per_cell_queries = 0;
   std::uint64_t m_fold_every = kFoldEvery;
 };
 

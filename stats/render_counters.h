@@ -27,9 +27,6 @@ struct RenderCounters {
                 CellCounters(res, per_cell), CellCounters(res, per_cell)} {}
 
   std::array<CellCounters, kRenderClasses> classes;
-  /// Sum over rays of predicted cells (1 + sum_a |v_a|/l_a) in 1/1024 units:
-  /// integer, so the merged total does not depend on thread scheduling.
-  std::array<std::uint64_t, kRenderClasses> predicted_fixed{};
   /// Sampled traversal time: every 64th query of a class is timed and counts 64 times.
   std::array<double, kRenderClasses> sampled_seconds{};
   std::array<std::uint64_t, kRenderClasses> queries{};
@@ -37,7 +34,6 @@ struct RenderCounters {
   void merge(const RenderCounters& o) {
     for (std::size_t k = 0; k < kRenderClasses; ++k) {
       classes[k].merge(o.classes[k]);
-      predicted_fixed[k] += o.predicted_fixed[k];
       sampled_seconds[k] += o.sampled_seconds[k];
       queries[k] += o.queries[k];
     }

@@ -32,7 +32,13 @@ nlohmann::ordered_json grid_section(const UniformGrid& grid, std::span<const Tri
 }
 
 nlohmann::ordered_json ray_class_section(const CastMeasurement& m, std::optional<double> p_tot_predicted) {
-  const ClassTotals& t = m.counters.totals;
+  return ray_class_section(ClassSummary{m.counters.totals, m.counters.per_cell_queries(), m.collusion,
+                                        m.cells_per_ray_predicted, m.time_s},
+                           p_tot_predicted);
+}
+
+nlohmann::ordered_json ray_class_section(const ClassSummary& m, std::optional<double> p_tot_predicted) {
+  const ClassTotals& t = m.totals;
   const CollusionStats& c = m.collusion;
   const double rays = double(t.rays);
   auto per_ray = [&](double v) { return t.rays > 0 ? nlohmann::ordered_json(v / rays) : nlohmann::ordered_json(); };
@@ -52,6 +58,7 @@ nlohmann::ordered_json ray_class_section(const CastMeasurement& m, std::optional
   j["r"] = number_or_null(c.r);
   j["kappa"] = number_or_null(c.kappa);
   j["kappa_eq25"] = number_or_null(c.kappa_eq25);
+  j["per_cell_rays"] = m.per_cell_rays;
   j["time_s"] = m.time_s;
   return j;
 }

@@ -20,8 +20,19 @@ nlohmann::ordered_json number_or_null(std::optional<double> v);
 /// The "grid" section: resolution, sizes, occupancy measured and predicted (eqs 19, 21).
 nlohmann::ordered_json grid_section(const UniformGrid& grid, std::span<const Triangle> triangles);
 
-/// One entry of the "rays" section, from a cast with counters.
-/// `p_tot_predicted` is given for uniform lines only (eq 22).
+/// What one entry of the "rays" section reports about a class of rays.
+struct ClassSummary {
+  ClassTotals totals;
+  std::uint64_t per_cell_rays = 0;  ///< rays counted per cell (all of them unless sampled)
+  CollusionStats collusion;
+  double cells_per_ray_predicted = 0;
+  double time_s = 0;
+};
+
+/// One entry of the "rays" section. `p_tot_predicted` is given for uniform
+/// lines only (eq 22).
+nlohmann::ordered_json ray_class_section(const ClassSummary& m, std::optional<double> p_tot_predicted);
+/// The same from a cast with counters.
 nlohmann::ordered_json ray_class_section(const CastMeasurement& m, std::optional<double> p_tot_predicted);
 
 }  // namespace kappa

@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
-# Render time with statistics on vs off (median of REPEAT runs, same binary),
-# and optionally against a BASELINE binary built without the stats module:
-#   BASELINE=/path/to/old/build/kappa tools/stats_overhead.sh [SCENE.json ...]
+# Render time with statistics off and on (median of REPEAT runs of the same
+# binary, interleaved so that drifts in machine load hit every variant), for
+# each CELL_SAMPLES value of --cell-sample, and optionally against a BASELINE
+# binary built without the stats module (cmake -DKAPPA_STATS=OFF):
+#   BASELINE=build-nostats/kappa CELL_SAMPLES="auto 1" tools/stats_overhead.sh [SCENE.json ...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-repeat="${REPEAT:-3}"
+kappa="${KAPPA:-build/kappa}"
+repeat="${REPEAT:-5}"
 size="${SIZE:-256}"
-spp="${SPP:-8}"
+spp="${SPP:-32}"
+read -r -a samples <<<"${CELL_SAMPLES:-auto}"
 scenes=("$@")
 if [ ${#scenes[@]} -eq 0 ]; then
   scenes=(assets/cornell-box/scene.json assets/bunny-lowres/scene_lowres.json)
@@ -17,26 +21,37 @@ fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-median_time() {  # binary, extra args...
+render_time() {  # binary, extra args...
   local bin=$1; shift
-  local times=()
-  for ((i = 0; i < repeat; ++i)); do
-    times+=("$("$bin" render "$scene" --spp "$spp" --width "$size" --height "$size" --out "$tmp/x.exr" "$@" 2>&1 |
-      sed -n 's/.*threads: \([0-9.]*\) s,.*/\1/p')")
-  done
-  printf "%s\n" "${times[@]}" | sort -g | sed -n "$(((repeat + 1) / 2))p"
+  "$bin" render "$scene" --spp "$spp" --width "$size" --height "$size" --out "$tmp/x.exr" "$@" 2>&1 |
+    sed -n 's/.*threads: \([0-9.]*\) s,.*/\1/p'
 }
+median() { printf "%s\n" "$@" | sort -g | sed -n "$((($# + 1) / 2))p"; }
 
-printf "%-45s %9s %9s %8s" scene "off_s" "on_s" "on/off"
+printf "%-42s %8s" scene "off_s"
+for k in "${samples[@]}"; do printf " %9s %7s" "on_s($k)" "on/off"; done
 [ -n "${BASELINE:-}" ] && printf " %11s %12s" "baseline_s" "off/baseline"
 printf "\n"
 for scene in "${scenes[@]}"; do
-  off=$(median_time build/kappa --stats off)
-  on=$(median_time build/kappa --stats on)
-  printf "%-45s %9s %9s %8.3f" "$scene" "$off" "$on" "$(awk -v a="$on" -v b="$off" 'BEGIN{print a/b}')"
+  declare -A times=()
+  for ((i = 0; i < repeat; ++i)); do
+    times[off]+="$(render_time "$kappa" --stats off) "
+    for k in "${samples[@]}"; do times[on_$k]+="$(render_time "$kappa" --stats on --cell-sample "$k") "; done
+    [ -n "${BASELINE:-}" ] && times[base]+="$(render_time "$BASELINE") "
+  done
+  # shellcheck disable=SC2086
+  off=$(median ${times[off]})
+  printf "%-42s %8s" "$scene" "$off"
+  for k in "${samples[@]}"; do
+    # shellcheck disable=SC2086
+    on=$(median ${times[on_$k]})
+    printf " %9s %7.3f" "$on" "$(awk -v a="$on" -v b="$off" 'BEGIN{print a/b}')"
+  done
   if [ -n "${BASELINE:-}" ]; then
-    base=$(median_time "$BASELINE")
+    # shellcheck disable=SC2086
+    base=$(median ${times[base]})
     printf " %11s %12.3f" "$base" "$(awk -v a="$off" -v b="$base" 'BEGIN{print a/b}')"
   fi
   printf "\n"
+  unset times
 done

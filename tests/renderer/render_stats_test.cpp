@@ -21,9 +21,11 @@ Scene small_cornell() {
 }
 
 RenderResult render_with(const Scene& scene, const Accelerator& accel, bool stats, int threads, Film& film,
-                         std::uint64_t max_bytes = std::uint64_t(1) << 32) {
+                         std::uint64_t max_bytes = std::uint64_t(1) << 32, std::uint64_t cell_sample = 1,
+                         int spp = 4) {
   RenderSettings settings;
-  settings.spp = 4;
+  settings.spp = spp;
+  settings.cell_sample = cell_sample;
   settings.stats = stats;
   settings.threads = threads;
   settings.stats_max_bytes = max_bytes;
@@ -58,7 +60,7 @@ TEST(RenderStats, CountersDoNotDependOnTheThreadCount) {
     EXPECT_EQ(a.hits_in(), b.hits_in()) << kRenderClassNames[k];
     EXPECT_EQ(a.totals.tests, b.totals.tests) << kRenderClassNames[k];
     EXPECT_EQ(a.totals.mailbox_skips, b.totals.mailbox_skips) << kRenderClassNames[k];
-    EXPECT_EQ(one.counters->predicted_fixed[k], two.counters->predicted_fixed[k]) << kRenderClassNames[k];
+    EXPECT_EQ(a.totals.predicted_fixed, b.totals.predicted_fixed) << kRenderClassNames[k];
   }
 }
 
@@ -90,8 +92,59 @@ TEST(RenderStats, PerCellCountersOverTheBudgetAreRefusedButTotalsStay) {
   EXPECT_GT(result.counters->classes[kCamera].totals.cells, 0u);
   EXPECT_NE(result.stats_note.find("refused"), std::string::npos);
   const auto report = render_report(scene, *grid, FrameFacts{32, 32, 4, 2, 0}, result);
-  EXPECT_TRUE(report["rays"]["camera"]["kappa"].is_null());
-  EXPECT_TRUE(report["rays"]["camera"]["p_tot"].is_number());
+  // kappa (eq 8) and p_tot come from the totals; what needs p_i per cell is null.
+  const auto& camera = report["rays"]["camera"];
+  const ClassTotals& t = result.counters->classes[kCamera].totals;
+  const GridInfo& g = dynamic_cast<const UniformGrid&>(*grid).info();
+  ASSERT_TRUE(camera["kappa"].is_number());
+  EXPECT_DOUBLE_EQ(camera["kappa"].get<double>(),
+                   double(g.resolution.cells()) * double(t.refs) / (double(t.cells) * double(g.theta_tot)));
+  EXPECT_TRUE(camera["p_tot"].is_number());
+  EXPECT_TRUE(camera["sigma_p"].is_null());
+  EXPECT_TRUE(camera["r"].is_null());
+  EXPECT_TRUE(camera["kappa_eq25"].is_null());
+  EXPECT_FALSE(report["stats"]["per_cell"].get<bool>());
+}
+
+// Per-cell counts for 1 path in 8: every total (and so kappa by eq 8) is the
+// same as when every path is counted; sigma_p, r and kappa_eq25 are estimates
+// from about an eighth of the rays, near the full count's values.
+TEST(RenderStats, SampledPerCellCountsKeepExactTotalsAndEstimateTheRest) {
+  Scene scene = small_cornell();
+  scene.width = scene.height = 64;
+  const auto grid = make_accelerator("grid", scene.triangles);
+  Film f1(scene.width, scene.height, {}), f8(scene.width, scene.height, {}), f8_two(scene.width, scene.height, {});
+  const RenderResult full = render_with(scene, *grid, true, 0, f1, std::uint64_t(1) << 32, 1, 16);
+  const RenderResult sampled = render_with(scene, *grid, true, 1, f8, std::uint64_t(1) << 32, 8, 16);
+  const RenderResult sampled_two = render_with(scene, *grid, true, 2, f8_two, std::uint64_t(1) << 32, 8, 16);
+  EXPECT_EQ(sampled.cell_sample, 8u);
+  const FrameFacts facts{64, 64, 16, 2, 0};
+  const auto a = render_report(scene, *grid, facts, full), b = render_report(scene, *grid, facts, sampled);
+  for (std::size_t k = 0; k < kRenderClasses; ++k) {
+    const CellCounters &x = full.counters->classes[k], &y = sampled.counters->classes[k];
+    const char* name = kRenderClassNames[k];
+    EXPECT_EQ(x.totals.rays, y.totals.rays) << name;
+    EXPECT_EQ(x.totals.cells, y.totals.cells) << name;
+    EXPECT_EQ(x.totals.tests, y.totals.tests) << name;
+    EXPECT_EQ(x.totals.refs, y.totals.refs) << name;
+    EXPECT_EQ(x.per_cell_queries(), x.totals.rays) << name;
+    // About 1 ray in 8 counted per cell (paths drawn by a hash: binomial).
+    const double n = double(x.totals.rays), q = 1.0 / 8.0;
+    EXPECT_NEAR(double(y.per_cell_queries()), n * q, 6.0 * std::sqrt(n * q)) << name;
+    // The path choice depends on (seed, pixel, sample) only.
+    EXPECT_EQ(y.visits(), sampled_two.counters->classes[k].visits()) << name;
+    EXPECT_EQ(y.per_cell_queries(), sampled_two.counters->classes[k].per_cell_queries()) << name;
+  }
+  for (const char* cls : {"camera", "shadow", "bounce1", "all"}) {
+    const auto &x = a["rays"][cls], &y = b["rays"][cls];
+    EXPECT_NEAR(x["kappa"].get<double>(), y["kappa"].get<double>(), 1e-12 * x["kappa"].get<double>()) << cls;
+    EXPECT_NEAR(x["p_tot"].get<double>(), y["p_tot"].get<double>(), 1e-12 * x["p_tot"].get<double>()) << cls;
+    EXPECT_NEAR(y["sigma_p"].get<double>(), x["sigma_p"].get<double>(), 0.05 * x["sigma_p"].get<double>()) << cls;
+    EXPECT_NEAR(y["kappa_eq25"].get<double>(), x["kappa_eq25"].get<double>(), 0.05 * x["kappa_eq25"].get<double>())
+        << cls;
+    EXPECT_NEAR(y["r"].get<double>(), x["r"].get<double>(), 0.05) << cls;
+  }
+  EXPECT_EQ(b["stats"]["cell_sample"].get<std::uint64_t>(), 8u);
 }
 
 TEST(RenderStats, NonGridAcceleratorsCountNothingPerClass) {
