@@ -16,13 +16,13 @@ ClassTotals& ClassTotals::operator+=(const ClassTotals& o) {
 CellCounters::CellCounters(const GridResolution& res, bool per_cell, std::uint64_t fold_every)
     : m_fold_every(fold_every) {
   if (!per_cell) return;
-  m_visits.assign(res.cells(), 0);
-  m_tests.assign(res.cells(), 0);
-  m_hits.assign(res.cells(), 0);
+  m_visits = ZeroedArray<std::uint32_t>(res.cells());
+  m_tests = ZeroedArray<std::uint64_t>(res.cells());
+  m_hits = ZeroedArray<std::uint64_t>(res.cells());
 }
 
 void CellCounters::fold() {
-  if (m_visits_64.empty()) m_visits_64.assign(m_visits.size(), 0);
+  if (m_visits_64.empty()) m_visits_64 = ZeroedArray<std::uint64_t>(m_visits.size());
   for (std::size_t i = 0; i < m_visits.size(); ++i) {
     m_visits_64[i] += m_visits[i];
     m_visits[i] = 0;
@@ -32,12 +32,16 @@ void CellCounters::fold() {
 
 void CellCounters::merge(const CellCounters& other) {
   if (per_cell() && other.per_cell()) {
-    if (m_visits_64.empty()) m_visits_64.assign(m_visits.size(), 0);
-    for (std::size_t b = 0; b < m_visits.size(); ++b)
-      m_visits_64[b] += std::uint64_t(other.m_visits[b]) + (other.m_visits_64.empty() ? 0 : other.m_visits_64[b]);
+    if (m_visits_64.empty()) m_visits_64 = ZeroedArray<std::uint64_t>(m_visits.size());
+    // Written only where other counted something: pages of cells no ray
+    // visited stay untouched zero pages (see ZeroedArray).
+    for (std::size_t b = 0; b < m_visits.size(); ++b) {
+      const std::uint64_t v = std::uint64_t(other.m_visits[b]) + (other.m_visits_64.empty() ? 0 : other.m_visits_64[b]);
+      if (v != 0) m_visits_64[b] += v;
+    }
     for (std::size_t i = 0; i < m_tests.size(); ++i) {
-      m_tests[i] += other.m_tests[i];
-      m_hits[i] += other.m_hits[i];
+      if (other.m_tests[i] != 0) m_tests[i] += other.m_tests[i];
+      if (other.m_hits[i] != 0) m_hits[i] += other.m_hits[i];
     }
   }
   totals += other.totals;

@@ -6,11 +6,11 @@
 // never shared between threads.
 #pragma once
 
-#include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "accel/grid.h"
+#include "zeroed_array.h"
 
 namespace kappa {
 
@@ -86,7 +86,7 @@ class CellCounters {
       t.refs += w.refs;
       t.tests += w.tests;
       t.mailbox_skips += w.skips;
-      t.predicted_fixed += std::uint64_t(std::llround(w.predicted_cells * 1024.0));
+      t.predicted_fixed += std::uint64_t(w.predicted_cells * 1024.0 + 0.5);  // >= 0: rounds to nearest
     }
 
    private:
@@ -113,8 +113,8 @@ class CellCounters {
     return std::uint64_t(m_visits[i]) + (m_visits_64.empty() ? 0 : m_visits_64[i]);
   }
   std::size_t cell_count() const { return m_visits.size(); }
-  const std::vector<std::uint64_t>& tests_in() const { return m_tests; }
-  const std::vector<std::uint64_t>& hits_in() const { return m_hits; }
+  std::vector<std::uint64_t> tests_in() const { return {m_tests.begin(), m_tests.end()}; }
+  std::vector<std::uint64_t> hits_in() const { return {m_hits.begin(), m_hits.end()}; }
 
   ClassTotals totals;
 
@@ -122,9 +122,9 @@ class CellCounters {
   void fold();
 
 
-  std::vector<std::uint32_t> m_visits;     ///< since the last fold
-  std::vector<std::uint64_t> m_visits_64;  ///< folded visits (empty until the first fold)
-  std::vector<std::uint64_t> m_tests, m_hits;
+  ZeroedArray<std::uint32_t> m_visits;     ///< since the last fold
+  ZeroedArray<std::uint64_t> m_visits_64;  ///< folded visits (empty until the first fold)
+  ZeroedArray<std::uint64_t> m_tests, m_hits;
   std::uint64_t m_queries_since_fold = 0;
   std::uint64_t m_per_cell_queries = 0;
   std::uint64_t m_fold_every = kFoldEvery;
