@@ -2,7 +2,13 @@
 
 #include <unistd.h>
 
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -20,24 +26,30 @@
 namespace kappa {
 namespace {
 
-/// Median seconds per ray of walking every ray once, one thread, nothing recorded.
-double seconds_per_ray(const UniformGrid& grid, const std::vector<Ray>& rays, GridWalk walk, int repeat) {
+/// Median thread-seconds per ray of walking every ray once with `threads`
+/// threads at once, nothing recorded: the render report's measured time is
+/// thread-seconds of walks running on every core, which share caches and
+/// memory bandwidth, so the constants are measured the same way.
+double seconds_per_ray(const UniformGrid& grid, const std::vector<Ray>& rays, GridWalk walk, int repeat, int threads) {
   std::vector<double> times;
-  std::uint64_t sink = 0;
+  std::atomic<std::uint64_t> sink{0};
   for (int r = 0; r <= repeat; ++r) {  // pass 0 warms the caches and is not kept
-    NoRecorder none;
     const auto start = std::chrono::steady_clock::now();
-    for (const Ray& ray : rays) {
-      switch (walk) {
-        case GridWalk::closest: sink += grid.closest_hit(ray, none).has_value(); break;
-        case GridWalk::any: sink += grid.any_hit(ray, none); break;
-        case GridWalk::whole: sink += grid.walk_whole(ray, none).has_value(); break;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024), [&](const auto& range) {
+      NoRecorder none;
+      std::uint64_t hits = 0;
+      for (std::size_t i = range.begin(); i < range.end(); ++i) {
+        switch (walk) {
+          case GridWalk::closest: hits += grid.closest_hit(rays[i], none).has_value(); break;
+          case GridWalk::any: hits += grid.any_hit(rays[i], none); break;
+          case GridWalk::whole: hits += grid.walk_whole(rays[i], none).has_value(); break;
+        }
       }
-    }
+      sink.fetch_add(hits, std::memory_order_relaxed);  // keeps the walks from being optimized away
+    });
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (r > 0) times.push_back(s / double(std::max<std::size_t>(rays.size(), 1)));
+    if (r > 0) times.push_back(s * double(threads) / double(std::max<std::size_t>(rays.size(), 1)));
   }
-  if (sink == std::uint64_t(-1)) std::puts("");  // keeps the walks from being optimized away
   std::sort(times.begin(), times.end());
   return times[times.size() / 2];
 }
@@ -65,6 +77,8 @@ int run_calibrate(const CalibrateOptions& options) {
     scenes = {(assets / "cornell-box" / "scene.json").string(), (assets / "bunny-lowres" / "scene_lowres.json").string()};
   }
 
+  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   std::vector<CostSample> samples;
   for (const auto& file : scenes) {
     Warnings warnings;
@@ -86,7 +100,7 @@ int run_calibrate(const CalibrateOptions& options) {
         if (rays.empty()) continue;
         const CastMeasurement m = cast_with_counters(grid, rays, walk, 1);
         CostSample s;
-        s.seconds_per_ray = seconds_per_ray(grid, rays, walk, options.repeat);
+        s.seconds_per_ray = seconds_per_ray(grid, rays, walk, options.repeat, threads);
         s.cells_per_ray = double(m.counters.totals.cells) / double(rays.size());
         s.refs_per_ray = double(m.counters.totals.refs) / double(rays.size());
         s.label = scene.name + " " + grid.info().resolution.to_string() + " " + ray_class_name(cls);
@@ -97,7 +111,7 @@ int run_calibrate(const CalibrateOptions& options) {
     }
   }
   Calibration cal = fit_calibration(samples);
-  cal.machine = machine_name();
+  cal.machine = machine_name() + ", " + std::to_string(threads) + " walking";
   std::printf("T0 %.2f ns, Ts %.2f ns, Th %.2f ns (%zu measurements, rms relative error %.1f %%) -> %s\n", cal.T0_ns,
               cal.Ts_ns, cal.Th_ns, cal.samples, 100 * cal.rms_relative_error, out_path.c_str());
   write_and_commit(out, to_json(cal, samples).dump(2) + "\n");

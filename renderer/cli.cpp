@@ -124,6 +124,10 @@ void add_calibrate_options(CLI::App& calibrate, CalibrateOptions& o) {
       ->capture_default_str();
   calibrate.add_option("--n", o.n, "rays per class and grid")->check(CLI::Range(std::size_t(100), std::size_t(1) << 26))->capture_default_str();
   calibrate.add_option("--repeat", o.repeat, "timed passes (median)")->check(CLI::Range(1, 100))->capture_default_str();
+  calibrate.add_option("--threads", o.threads,
+                       "threads walking at once; times are thread-seconds, as the render report measures them "
+                       "(default: all cores)")
+      ->check(CLI::Range(1, 4096));
   calibrate.add_option("--out", o.out, "calibration file (default: kappa_calibration.json beside the executable)");
 }
 
