@@ -44,10 +44,10 @@ inline std::uint64_t auto_cell_sample(std::uint64_t cells) {
 
 /// Memory for per-cell statistics on a grid of `cells` cells rendered by
 /// `threads` threads: per thread and class 32-bit visits and 64-bit tests and
-/// hits; per class the 64-bit visits they fold into; two 64-bit arrays
-/// while the report or the cell map is made.
+/// hits; per class the 64-bit visits they fold into; while the report or the
+/// cell map is made, Theta_i (32-bit) and two 64-bit arrays of visits.
 inline std::uint64_t per_cell_stats_bytes(std::uint64_t cells, std::uint64_t threads) {
-  return cells * ((4 + 8 + 8) * kRenderClasses * threads + 8 * kRenderClasses + 16);
+  return cells * ((4 + 8 + 8) * kRenderClasses * threads + 8 * kRenderClasses + 4 + 8 + 8);
 }
 
 struct RenderResult {
