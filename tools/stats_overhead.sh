@@ -3,7 +3,7 @@
 # binary, interleaved so that drifts in machine load hit every variant), for
 # each CELL_SAMPLES value of --cell-sample, and optionally against a BASELINE
 # binary built without the stats module (cmake -DKAPPA_STATS=OFF):
-#   BASELINE=build-nostats/kappa CELL_SAMPLES="auto 1" tools/stats_overhead.sh [SCENE.json ...]
+#   BASELINE=build-nostats/kappa CELL_SAMPLES="auto 1" [THREADS=1] tools/stats_overhead.sh [SCENE.json ...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 kappa="${KAPPA:-build/kappa}"
@@ -23,7 +23,7 @@ trap 'rm -rf "$tmp"' EXIT
 
 render_time() {  # binary, extra args...
   local bin=$1; shift
-  "$bin" render "$scene" --spp "$spp" --width "$size" --height "$size" --out "$tmp/x.exr" "$@" 2>&1 |
+  "$bin" render "$scene" --spp "$spp" --width "$size" --height "$size" --out "$tmp/x.exr" ${THREADS:+--threads "$THREADS"} "$@" 2>&1 |
     sed -n 's/.*threads: \([0-9.]*\) s,.*/\1/p'
 }
 median() { printf "%s\n" "$@" | sort -g | sed -n "$((($# + 1) / 2))p"; }
