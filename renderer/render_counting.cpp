@@ -1,0 +1,47 @@
+#include "render_counting.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <memory>
+
+#include "queries.h"
+#include "tile_loop.h"
+
+namespace kappa {
+
+RenderResult render_counting(const Scene& scene, const UniformGrid& grid, const RenderSettings& settings, Film& film,
+                             const ProgressCallback& progress) {
+  RenderResult result;
+  // Per-cell arrays per class and per thread must fit beside the grid in
+  // --grid-max-bytes, with what the report adds (64-bit visits folded per
+  // class, and one 64-bit array for the classes together); otherwise only
+  // per-class totals are kept.
+  const std::uint64_t cells = grid.info().resolution.cells();
+  const std::uint64_t threads =
+      std::uint64_t(settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency());
+  const std::uint64_t need = per_cell_stats_bytes(cells, threads);
+  const bool per_cell = grid.info().bytes + need <= settings.stats_max_bytes;
+  const std::uint64_t every = settings.cell_sample > 0 ? settings.cell_sample : auto_cell_sample(cells);
+  const CellSampling sampling{per_cell ? every : 1, settings.seed};
+  tbb::enumerable_thread_specific<RenderCounters> per_thread(
+      [&] { return RenderCounters(grid.info().resolution, per_cell); });
+  result = render_tiles(scene, settings, film, progress,
+                        [&] { return CountingQueries(grid, per_thread.local(), sampling); });
+  // Merge into one thread's counters: no further copy of the arrays.
+  std::shared_ptr<RenderCounters> merged;
+  for (RenderCounters& c : per_thread) {
+    if (!merged) merged = std::make_shared<RenderCounters>(std::move(c));
+    else merged->merge(c);
+  }
+  if (!merged) merged = std::make_shared<RenderCounters>(grid.info().resolution, per_cell);
+  result.counters = merged;
+  result.cell_sample = sampling.every;
+  if (!per_cell)
+    result.stats_note = "per-cell statistics refused: " + std::to_string(need >> 20) +
+                        " MiB of counters would exceed --grid-max-bytes; per-class totals only";
+  return result;
+}
+
+}  // namespace kappa
