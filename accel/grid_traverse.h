@@ -126,8 +126,17 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
   const PreparedRay prepared(ray);
   detail::Mailbox mailbox;
   WalkCounts counts;
+  // The walk's state in scalars, so that it stays in registers.
+  double tx = t_next[0], ty = t_next[1], tz = t_next[2];
+  const double dx = t_delta[0], dy = t_delta[1], dz = t_delta[2];
+  int ix = cell[0], iy = cell[1], iz = cell[2];
   const auto done = [&](bool result) {
     // Dead code for recorders that ignore it (NoRecorder).
+    // Cells visited, from where the walk started and stopped rather than a
+    // counter in the loop: each step moves one index by one, and a walk that
+    // left the grid has one index on its `last` value.
+    const bool left = ix == last[0] || iy == last[1] || iz == last[2];
+    counts.cells = std::uint64_t(1 + std::abs(ix - cell[0]) + std::abs(iy - cell[1]) + std::abs(iz - cell[2])) - left;
     const double end = Mode == GridWalk::closest ? std::min(t_out, double(best.t)) : t_out;
     if (end > t_in) {
       const double len = end - t_in;
@@ -138,15 +147,10 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
     return result;
   };
   const double t_end = t1 + margin_t;
-  // The walk's state in scalars, so that it stays in registers.
-  double tx = t_next[0], ty = t_next[1], tz = t_next[2];
-  const double dx = t_delta[0], dy = t_delta[1], dz = t_delta[2];
-  int ix = cell[0], iy = cell[1], iz = cell[2];
   while (true) {
     const bool occupied = (m_occupied[std::size_t(c) >> 6] >> (std::size_t(c) & 63)) & 1;
     const std::uint32_t begin = occupied ? m_offsets[std::size_t(c)] : 0, end = occupied ? m_offsets[std::size_t(c) + 1] : 0;
     recorder.cell(std::uint64_t(c), ix, iy, iz);
-    ++counts.cells;
     counts.refs += end - begin;
     for (std::uint32_t k = begin; k < end; ++k) {
       const TriangleId id = m_refs[k];
