@@ -8,6 +8,7 @@
 #include <cfloat>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "grid.h"
 
@@ -131,19 +132,21 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
   const double dx = t_delta[0], dy = t_delta[1], dz = t_delta[2];
   int ix = cell[0], iy = cell[1], iz = cell[2];
   const auto done = [&](bool result) {
-    // Dead code for recorders that ignore it (NoRecorder).
-    // Cells visited, from where the walk started and stopped rather than a
-    // counter in the loop: each step moves one index by one, and a walk that
-    // left the grid has one index on its `last` value.
-    const bool left = ix == last[0] || iy == last[1] || iz == last[2];
-    counts.cells = std::uint64_t(1 + std::abs(ix - cell[0]) + std::abs(iy - cell[1]) + std::abs(iz - cell[2])) - left;
-    const double end = Mode == GridWalk::closest ? std::min(t_out, double(best.t)) : t_out;
-    if (end > t_in) {
-      const double len = end - t_in;
-      counts.predicted_cells = 1.0 + std::abs(d.x) * len * m_inv_cell.x + std::abs(d.y) * len * m_inv_cell.y +
-                               std::abs(d.z) * len * m_inv_cell.z;
+    if constexpr (!std::is_same_v<Recorder, NoRecorder>) {
+      // Cells visited, from where the walk started and stopped rather than a
+      // counter in the loop: each step moves one index by one, and a walk
+      // that left the grid has one index on its `last` value.
+      const bool left = ix == last[0] || iy == last[1] || iz == last[2];
+      counts.cells =
+          std::uint64_t(1 + std::abs(ix - cell[0]) + std::abs(iy - cell[1]) + std::abs(iz - cell[2])) - left;
+      const double end = Mode == GridWalk::closest ? std::min(t_out, double(best.t)) : t_out;
+      if (end > t_in) {
+        const double len = end - t_in;
+        counts.predicted_cells = 1.0 + std::abs(d.x) * len * m_inv_cell.x + std::abs(d.y) * len * m_inv_cell.y +
+                                 std::abs(d.z) * len * m_inv_cell.z;
+      }
+      recorder.finish(counts);
     }
-    recorder.finish(counts);
     return result;
   };
   const double t_end = t1 + margin_t;

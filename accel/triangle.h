@@ -71,14 +71,15 @@ struct PreparedRay {
 
   // A zero in float may be a rounding artefact: decide it exactly in double,
   // which is what makes shared edges watertight.
-  if (U == 0.0f || V == 0.0f || W == 0.0f) {
+  // Non-short-circuit | and &: the same tests without a branch each.
+  if ((U == 0.0f) | (V == 0.0f) | (W == 0.0f)) {
     U = float(double(Cx) * double(By) - double(Cy) * double(Bx));
     V = float(double(Ax) * double(Cy) - double(Ay) * double(Cx));
     W = float(double(Bx) * double(Ay) - double(By) * double(Ax));
   }
 
   // No back-face culling: the signs must agree, whichever they are.
-  if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return false;
+  if (((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f))) return false;
   const float det = U + V + W;
   if (det == 0.0f) return false;  // degenerate, or the ray lies in the triangle's plane
 
