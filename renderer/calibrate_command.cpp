@@ -48,7 +48,9 @@ double seconds_per_ray(const UniformGrid& grid, const std::vector<Ray>& rays, Gr
       sink.fetch_add(hits, std::memory_order_relaxed);  // keeps the walks from being optimized away
     });
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (r > 0) times.push_back(s * double(threads) / double(std::max<std::size_t>(rays.size(), 1)));
+    // Thread-seconds: every thread busy, unless there are fewer chunks of rays than threads.
+    const std::size_t busy = std::min<std::size_t>(std::size_t(threads), (rays.size() + 1023) / 1024);
+    if (r > 0) times.push_back(s * double(std::max<std::size_t>(busy, 1)) / double(std::max<std::size_t>(rays.size(), 1)));
   }
   std::sort(times.begin(), times.end());
   return times[times.size() / 2];

@@ -84,12 +84,14 @@ CollusionStats collusion_sampled(std::span<const std::uint64_t> visits, std::spa
   // spread, where the exact mean would leave its noise in it.
   s.sigma_p = std::sqrt(std::max(0.0, sum_p2 / n - p_avg_sample * p_avg_sample));
   // r and kappa_eq25 from the sample's covariance (collusion() above),
-  // rescaled to the estimated sigma_p.
-  if (s.kappa_eq25 && s.r && s.sigma_p > 0) {
-    const double cov = (*s.kappa_eq25 - 1.0) * p_avg_sample * s.theta_avg;
-    s.r = cov / (s.sigma_p * s.sigma_theta);
-  } else if (s.sigma_p == 0) {
+  // r rescaled to the estimated sigma_p (and kept in [-1, 1]: the sample's
+  // covariance keeps its noise while the corrected sigma_p loses its bias).
+  if (s.sigma_p == 0) {
     s.r.reset();
+    if (s.kappa_eq25) s.kappa_eq25 = 1.0;  // uniform p: no collusion, as collusion() gives
+  } else if (s.kappa_eq25 && s.r) {
+    const double cov = (*s.kappa_eq25 - 1.0) * p_avg_sample * s.theta_avg;
+    s.r = std::clamp(cov / (s.sigma_p * s.sigma_theta), -1.0, 1.0);
   }
   return s;
 }

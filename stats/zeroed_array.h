@@ -9,6 +9,7 @@
 #include <memory>
 #include <new>
 #include <type_traits>
+#include <utility>
 
 namespace kappa {
 
@@ -26,8 +27,13 @@ class ZeroedArray {
     if (this != &o) *this = ZeroedArray(o);
     return *this;
   }
-  ZeroedArray(ZeroedArray&&) noexcept = default;
-  ZeroedArray& operator=(ZeroedArray&&) noexcept = default;
+  // A moved-from array is empty (size 0), not a size without data.
+  ZeroedArray(ZeroedArray&& o) noexcept : m_data(std::move(o.m_data)), m_size(std::exchange(o.m_size, 0)) {}
+  ZeroedArray& operator=(ZeroedArray&& o) noexcept {
+    m_data = std::move(o.m_data);
+    m_size = std::exchange(o.m_size, 0);
+    return *this;
+  }
 
   std::size_t size() const { return m_size; }
   bool empty() const { return m_size == 0; }
