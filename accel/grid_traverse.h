@@ -151,29 +151,31 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
   };
   const double t_end = t1 + margin_t;
   while (true) {
-    const bool occupied = (m_occupied[std::size_t(c) >> 6] >> (std::size_t(c) & 63)) & 1;
-    const std::uint32_t begin = occupied ? m_offsets[std::size_t(c)] : 0, end = occupied ? m_offsets[std::size_t(c) + 1] : 0;
     recorder.cell(std::uint64_t(c), ix, iy, iz);
-    counts.refs += end - begin;
-    for (std::uint32_t k = begin; k < end; ++k) {
-      const TriangleId id = m_refs[k];
-      if (mailbox.seen(id)) {
-        ++counts.skips;
-        continue;
-      }
-      recorder.test();
-      ++counts.tests;
-      if constexpr (AnyHit) {
-        float t, b0, b1, b2;
-        if (intersect_triangle(prepared, m_triangles[id], ray.tmin, ray.tmax, t, b0, b1, b2)) {
-          recorder.hit();
-          return done(true);
+    // Empty cells (most of them) do nothing more: no offsets, no counts.
+    if ((m_occupied[std::size_t(c) >> 6] >> (std::size_t(c) & 63)) & 1) {
+      const std::uint32_t begin = m_offsets[std::size_t(c)], end = m_offsets[std::size_t(c) + 1];
+      counts.refs += end - begin;
+      for (std::uint32_t k = begin; k < end; ++k) {
+        const TriangleId id = m_refs[k];
+        if (mailbox.seen(id)) {
+          ++counts.skips;
+          continue;
         }
-      } else {
-        const TriangleId before = best.triangle;
-        const float before_t = best.t;
-        test_closest(prepared, m_triangles[id], id, ray.tmin, best);
-        if (best.triangle != before || best.t != before_t) recorder.hit();
+        recorder.test();
+        ++counts.tests;
+        if constexpr (AnyHit) {
+          float t, b0, b1, b2;
+          if (intersect_triangle(prepared, m_triangles[id], ray.tmin, ray.tmax, t, b0, b1, b2)) {
+            recorder.hit();
+            return done(true);
+          }
+        } else {
+          const TriangleId before = best.triangle;
+          const float before_t = best.t;
+          test_closest(prepared, m_triangles[id], id, ray.tmin, best);
+          if (best.triangle != before || best.t != before_t) recorder.hit();
+        }
       }
     }
     // Leave through the nearest cell plane; on exact ties x, then y, then z.

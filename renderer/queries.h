@@ -76,43 +76,42 @@ class CountingQueries {
   }
 
   std::optional<Hit> closest(const Ray& r, int depth) {
-    ++rays;
-    const RenderClass k = class_of_depth(depth);
-    CellCounters& c = m_counters.classes[k];
-    std::optional<Hit> hit;
-    timed(k, [&] {
-      if (m_path_per_cell) {
-        CellCounters::Tally tally(c);
-        hit = m_grid.closest_hit(r, tally);
-      } else {
-        CellCounters::TotalsTally tally(c);
-        hit = m_grid.closest_hit(r, tally);
-      }
-    });
-    ++c.totals.rays;
-    c.totals.hits += hit.has_value();
-    return hit;
+    return counted<std::optional<Hit>>(class_of_depth(depth), [&](auto& tally) { return m_grid.closest_hit(r, tally); });
   }
 
   bool shadow(const Ray& r) {
-    ++rays;
-    CellCounters& c = m_counters.classes[kShadow];
-    bool occluded = false;
-    timed(kShadow, [&] {
-      if (m_path_per_cell) {
-        CellCounters::Tally tally(c);
-        occluded = m_grid.any_hit(r, tally);
-      } else {
-        CellCounters::TotalsTally tally(c);
-        occluded = m_grid.any_hit(r, tally);
-      }
-    });
-    ++c.totals.rays;
-    c.totals.hits += occluded;
-    return occluded;
+    return counted<bool>(kShadow, [&](auto& tally) { return m_grid.any_hit(r, tally); });
   }
 
  private:
+  /// One query of class k: walked with the tally this path was given (per
+  /// cell or totals only), timed by sampling, counted in the class totals.
+  template <typename Result, typename Walk>
+  Result counted(RenderClass k, Walk&& walk) {
+    ++rays;
+    CellCounters& c = m_counters.classes[k];
+    Result result{};
+    timed(k, [&] {
+      if (m_path_per_cell) {
+        result = walk_per_cell<Result>(c, walk);
+      } else {
+        CellCounters::TotalsTally tally(c);
+        result = walk(tally);
+      }
+    });
+    ++c.totals.rays;
+    c.totals.hits += bool(result);
+    return result;
+  }
+
+  /// The rare per-cell walk (sampled paths), kept out of line so that the
+  /// common totals-only walk gets the compiler's inlining.
+  template <typename Result, typename Walk>
+  [[gnu::noinline]] static Result walk_per_cell(CellCounters& c, Walk& walk) {
+    CellCounters::Tally tally(c);
+    return walk(tally);
+  }
+
   /// Times every 64th query of a class with the clock and counts it 64
   /// times: no clock read per query. The clock's own cost, measured once,
   /// is taken off each timed query (it would otherwise be counted 64 times).
