@@ -17,8 +17,8 @@ CellCounters::CellCounters(const GridResolution& res, bool per_cell, std::uint64
     : m_fold_every(fold_every) {
   if (!per_cell) return;
   m_visits = ZeroedArray<std::uint32_t>(res.cells());
-  m_tests = ZeroedArray<std::uint64_t>(res.cells());
-  m_hits = ZeroedArray<std::uint64_t>(res.cells());
+  m_tests = SplitCounts(res.cells());
+  m_hits = SplitCounts(res.cells());
 }
 
 void CellCounters::fold() {
@@ -40,8 +40,8 @@ void CellCounters::merge(const CellCounters& other) {
       if (v != 0) m_visits_64[b] += v;
     }
     for (std::size_t i = 0; i < m_tests.size(); ++i) {
-      if (other.m_tests[i] != 0) m_tests[i] += other.m_tests[i];
-      if (other.m_hits[i] != 0) m_hits[i] += other.m_hits[i];
+      if (const std::uint64_t t = other.m_tests.at(i); t != 0) m_tests.add(i, t);
+      if (const std::uint64_t h = other.m_hits.at(i); h != 0) m_hits.add(i, h);
     }
   }
   totals += other.totals;

@@ -1,0 +1,36 @@
+// The per-cell counters' carry into the high words, and the zeroed arrays
+// they are made of.
+#include <gtest/gtest.h>
+
+#include "stats/split_counts.h"
+
+namespace kappa {
+namespace {
+
+TEST(SplitCounts, IncrementCarriesPast32Bits) {
+  SplitCounts c(3);
+  EXPECT_EQ(c.at(0), 0u);
+  c.add(1, 0xFFFFFFFEull);
+  c.increment(1);
+  EXPECT_EQ(c.at(1), 0xFFFFFFFFull);
+  c.increment(1);
+  EXPECT_EQ(c.at(1), 0x100000000ull);
+  c.add(1, 0x500000003ull);
+  EXPECT_EQ(c.at(1), 0x600000003ull);
+  EXPECT_EQ(c.all(), (std::vector<std::uint64_t>{0, 0x600000003ull, 0}));
+}
+
+TEST(ZeroedArray, StartsZeroAndAMovedFromArrayIsEmpty) {
+  ZeroedArray<std::uint32_t> a(1 << 20);
+  for (std::size_t i = 0; i < a.size(); i += 4099) EXPECT_EQ(a[i], 0u);
+  a[7] = 5;
+  ZeroedArray<std::uint32_t> copy(a);
+  EXPECT_EQ(copy[7], 5u);
+  ZeroedArray<std::uint32_t> moved(std::move(a));
+  EXPECT_EQ(moved.size(), std::size_t(1) << 20);
+  EXPECT_EQ(moved[7], 5u);
+  EXPECT_TRUE(a.empty());  // NOLINT(bugprone-use-after-move): the moved-from state is what is tested
+}
+
+}  // namespace
+}  // namespace kappa
