@@ -131,7 +131,7 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
   double tx = t_next[0], ty = t_next[1], tz = t_next[2];
   const double dx = t_delta[0], dy = t_delta[1], dz = t_delta[2];
   int ix = cell[0], iy = cell[1], iz = cell[2];
-  const auto done = [&](bool result) {
+  const auto done = [&](bool result) __attribute__((always_inline)) {
     if constexpr (!std::is_same_v<Recorder, NoRecorder>) {
       // Cells visited, from where the walk started and stopped rather than a
       // counter in the loop: each step moves one index by one, and a walk

@@ -3,7 +3,9 @@
 // with the power heuristic, and Russian roulette.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -32,22 +34,29 @@ struct RenderSettings {
 
 /// Grids up to this many cells keep every path's per-cell counts by default.
 inline constexpr std::uint64_t kFullCellCountLimit = std::uint64_t(1) << 16;
-/// 1 path in this many is counted per cell by default on larger grids.
-inline constexpr std::uint64_t kDefaultCellSample = 64;
+/// On larger grids, about 1 path in N_c / kCellsPerSampledPath is counted...
+inline constexpr std::uint64_t kCellsPerSampledPath = 8192;
+/// ... but never fewer than 1 in kMaxAutoCellSample.
+inline constexpr std::uint64_t kMaxAutoCellSample = 1024;
 
-/// --cell-sample auto: on a small grid the per-cell arrays stay in cache and
-/// counting every path costs little; on a large one each cell a ray crosses
-/// writes a line of memory, so 1 path in kDefaultCellSample is counted.
+/// --cell-sample auto. On a small grid the per-cell arrays stay in cache and
+/// counting every path costs little. On a large one each cell a ray crosses
+/// is a cache miss, and the share of a render they cost grows with N_c, so
+/// the sampling rate falls as N_c grows: 1 path in N_c / 8192, rounded down
+/// to a power of two (Sponza's 2.1 M cells: 1 in 256). Measured in
+/// stats/README.md: what it costs, and how near the sampled estimates are.
 inline std::uint64_t auto_cell_sample(std::uint64_t cells) {
-  return cells <= kFullCellCountLimit ? 1 : kDefaultCellSample;
+  if (cells <= kFullCellCountLimit) return 1;
+  return std::min(kMaxAutoCellSample, std::bit_floor(cells / kCellsPerSampledPath));
 }
 
-/// Memory for per-cell statistics on a grid of `cells` cells rendered by
-/// `threads` threads: per thread and class 32-bit visits and 64-bit tests and
-/// hits; per class the 64-bit visits they fold into; while the report or the
-/// cell map is made, Theta_i (32-bit) and two 64-bit arrays of visits.
-inline std::uint64_t per_cell_stats_bytes(std::uint64_t cells, std::uint64_t threads) {
-  return cells * ((4 + 8 + 8) * kRenderClasses * threads + 8 * kRenderClasses + 4 + 8 + 8);
+/// Memory for per-cell statistics on a grid of `cells` cells with `copies`
+/// sets of per-cell arrays (one per thread when every path is counted, one
+/// shared when paths are sampled): per set and class 64-bit visits, tests and
+/// hits; while the report or the cell map is made, Theta_i (32-bit) and two
+/// 64-bit arrays of visits.
+inline std::uint64_t per_cell_stats_bytes(std::uint64_t cells, std::uint64_t copies) {
+  return cells * ((8 + 8 + 8) * kRenderClasses * copies + 4 + 8 + 8);
 }
 
 struct RenderResult {

@@ -52,7 +52,14 @@ struct CellSampling {
   }
 };
 
+/// Counts every query in its class's totals and, for the paths `sampling`
+/// picks, per cell: into each thread's own arrays (SampledMode own, for
+/// counting every path) or into arrays the threads share (shared, for
+/// sampled paths). The mode is chosen once per frame.
+template <PerCell SampledMode>
 class CountingQueries {
+  static_assert(SampledMode != PerCell::no);
+
  public:
   /// Per-cell counts are kept if `counters` has per-cell arrays, for the
   /// paths `sampling` picks.
@@ -108,7 +115,7 @@ class CountingQueries {
   /// common totals-only walk gets the compiler's inlining.
   template <typename Result, typename Walk>
   [[gnu::noinline]] static Result walk_per_cell(CellCounters& c, Walk& walk) {
-    CellCounters::Tally tally(c);
+    CellCounters::BasicTally<SampledMode> tally(c);
     return walk(tally);
   }
 

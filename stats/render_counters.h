@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "counters.h"
@@ -20,11 +21,26 @@ inline RenderClass class_of_depth(int depth) {
   return depth == 0 ? kCamera : depth == 1 ? kBounce1 : depth == 2 ? kBounce2 : kBounce3Plus;
 }
 
+/// Per-cell arrays of each class, shared by every thread's counters.
+using SharedCellArrays = std::array<std::shared_ptr<CellArrays>, kRenderClasses>;
+
+/// Per-cell arrays for every class of a grid of `cells` cells, to share.
+inline SharedCellArrays make_shared_cell_arrays(std::size_t cells) {
+  SharedCellArrays a;
+  for (auto& p : a) p = std::make_shared<CellArrays>(cells);
+  return a;
+}
+
 /// One thread's counters for a frame.
 struct RenderCounters {
+  /// Per-cell arrays of this thread's own (or totals only, if `per_cell` is false).
   RenderCounters(const GridResolution& res, bool per_cell)
       : classes{CellCounters(res, per_cell), CellCounters(res, per_cell), CellCounters(res, per_cell),
                 CellCounters(res, per_cell), CellCounters(res, per_cell)} {}
+  /// Per-cell counts into `shared`, with every other thread.
+  explicit RenderCounters(const SharedCellArrays& shared)
+      : classes{CellCounters(shared[0]), CellCounters(shared[1]), CellCounters(shared[2]), CellCounters(shared[3]),
+                CellCounters(shared[4])} {}
 
   std::array<CellCounters, kRenderClasses> classes;
   /// Sampled traversal time: every 64th query of a class is timed and counts 64 times.

@@ -1,6 +1,7 @@
 // Per-cell 64-bit counters that cost 4 bytes of memory traffic each.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -18,6 +19,13 @@ class SplitCounts {
   explicit SplitCounts(std::size_t n) : m_lo(n), m_hi(n) {}
   void increment(std::size_t i) {
     if (++m_lo[i] == 0) ++m_hi[i];
+  }
+  /// increment() on an array that other threads increment at the same time:
+  /// relaxed atomics, since only the sums matter and they are read after the
+  /// threads have joined. The thread that wraps a low word adds its carry.
+  void increment_shared(std::size_t i) {
+    if (std::atomic_ref<std::uint32_t>(m_lo[i]).fetch_add(1, std::memory_order_relaxed) == 0xFFFFFFFFu)
+      std::atomic_ref<std::uint32_t>(m_hi[i]).fetch_add(1, std::memory_order_relaxed);
   }
   std::uint64_t at(std::size_t i) const { return (std::uint64_t(m_hi[i]) << 32) | m_lo[i]; }
   void add(std::size_t i, std::uint64_t v) {

@@ -82,6 +82,14 @@ TEST(RenderStats, ReportHasEveryClassAndNoNaN) {
   EXPECT_EQ(text.find("NaN"), std::string::npos);
 }
 
+TEST(RenderStats, AutoCellSampleFallsWithTheGridSize) {
+  EXPECT_EQ(auto_cell_sample(1000), 1u);
+  EXPECT_EQ(auto_cell_sample(65536), 1u);
+  EXPECT_EQ(auto_cell_sample(65537), 8u);
+  EXPECT_EQ(auto_cell_sample(215 * 102 * 97), 256u);  // Sponza at the default density
+  EXPECT_EQ(auto_cell_sample(std::uint64_t(1) << 40), 1024u);
+}
+
 TEST(RenderStats, PerCellCountersOverTheBudgetAreRefusedButTotalsStay) {
   const Scene scene = small_cornell();
   const auto grid = make_accelerator("grid", scene.triangles);

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <numeric>
 #include <random>
+#include <thread>
 
 #include "accel/grid.h"
 #include "accel/grid_traverse.h"
@@ -188,30 +190,42 @@ TEST(CastIdentities, CountersDoNotDependOnTheThreadCount) {
 namespace kappa {
 namespace {
 
-TEST(Counters, FoldingThirtyTwoBitVisitsLosesNothing) {
-  // Fold after every 7 queries instead of 2^31: totals and per-cell counts
-  // must match an unfolded run exactly, and merging folded with unfolded
-  // counters must add up.
+TEST(Counters, SharedArraysCountWhatOwnArraysCount) {
+  // Two threads walking half the lines each into one shared set of arrays
+  // (atomic increments) must count per cell exactly what one thread counts
+  // into its own; and merging two own sets adds them up.
   const auto tris = test::random_soup(500, 11, 0.05f);
   const UniformGrid grid = grid_at(tris, {12, 12, 12});
-  const auto lines = uniform_lines(grid.info().lo, grid.info().hi, 1000, 12);
-  CellCounters plain(grid.info().resolution), folded(grid.info().resolution, true, 7);
+  const auto lines = uniform_lines(grid.info().lo, grid.info().hi, 4000, 12);
+  CellCounters own(grid.info().resolution);
   for (const Ray& r : lines) {
-    {
-      CellCounters::Tally t(plain);
-      grid.walk_whole(r, t);
-    }
-    CellCounters::Tally t(folded);
+    CellCounters::Tally t(own);
     grid.walk_whole(r, t);
   }
-  EXPECT_EQ(plain.visits(), folded.visits());
-  EXPECT_EQ(plain.tests_in(), folded.tests_in());
-  EXPECT_EQ(plain.totals.cells, folded.totals.cells);
+  const auto shared = std::make_shared<CellArrays>(grid.info().resolution.cells());
+  CellCounters first(shared), second(shared);
+  const auto walk_half = [&](CellCounters& counters, std::size_t parity) {
+    for (std::size_t i = parity; i < lines.size(); i += 2) {
+      CellCounters::SharedTally t(counters);
+      grid.walk_whole(lines[i], t);
+    }
+  };
+  std::thread other(walk_half, std::ref(second), 1);
+  walk_half(first, 0);
+  other.join();
+  first.merge(second);
+  EXPECT_EQ(first.visits(), own.visits());
+  EXPECT_EQ(first.tests_in(), own.tests_in());
+  EXPECT_EQ(first.hits_in(), own.hits_in());
+  EXPECT_EQ(first.per_cell_queries(), own.per_cell_queries());
+  EXPECT_EQ(first.totals.cells, own.totals.cells);
+
   CellCounters sum(grid.info().resolution);
-  sum.merge(plain);
-  sum.merge(folded);
-  const auto v = sum.visits(), p = plain.visits();
+  sum.merge(own);
+  sum.merge(own);
+  const auto v = sum.visits(), p = own.visits();
   for (std::size_t i = 0; i < v.size(); ++i) ASSERT_EQ(v[i], 2 * p[i]);
+  EXPECT_GT(std::accumulate(p.begin(), p.end(), std::uint64_t(0)), 0u);
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 // they are made of.
 #include <gtest/gtest.h>
 
+#include <thread>
+
 #include "stats/split_counts.h"
 
 namespace kappa {
@@ -18,6 +20,19 @@ TEST(SplitCounts, IncrementCarriesPast32Bits) {
   c.add(1, 0x500000003ull);
   EXPECT_EQ(c.at(1), 0x600000003ull);
   EXPECT_EQ(c.all(), (std::vector<std::uint64_t>{0, 0x600000003ull, 0}));
+}
+
+TEST(SplitCounts, SharedIncrementsFromThreadsCarryPast32Bits) {
+  SplitCounts c(2);
+  c.add(0, 0xFFFFFFFFull - 5000);
+  const auto bump = [&] {
+    for (int i = 0; i < 10000; ++i) c.increment_shared(i % 2);
+  };
+  std::thread a(bump), b(bump);
+  a.join();
+  b.join();
+  EXPECT_EQ(c.at(0), 0xFFFFFFFFull - 5000 + 10000);
+  EXPECT_EQ(c.at(1), 10000u);
 }
 
 TEST(ZeroedArray, StartsZeroAndAMovedFromArrayIsEmpty) {
