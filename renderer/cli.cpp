@@ -58,7 +58,7 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   render.add_option("--cell-sample", o.cell_sample,
-                    "count per cell for 1 path in N (auto: every path on grids of up to 65536 cells, 1 in N_c/8192 rounded down to a power of two on larger ones); "
+                    "count per cell for 1 path in N (auto: every path on grids of up to 65536 cells, 1 in N_c/8192 rounded down to a power of two, within 64..1024, on larger ones); "
                     "totals always count every ray")
       ->capture_default_str();
   render.add_option("--report", o.report, "write the per-frame JSON report (stats/README.md) here");

@@ -34,20 +34,23 @@ struct RenderSettings {
 
 /// Grids up to this many cells keep every path's per-cell counts by default.
 inline constexpr std::uint64_t kFullCellCountLimit = std::uint64_t(1) << 16;
-/// On larger grids, about 1 path in N_c / kCellsPerSampledPath is counted...
+/// On larger grids, about 1 path in N_c / kCellsPerSampledPath is counted,
+/// but at least 1 in kMinAutoCellSample and never fewer than 1 in
+/// kMaxAutoCellSample.
 inline constexpr std::uint64_t kCellsPerSampledPath = 8192;
-/// ... but never fewer than 1 in kMaxAutoCellSample.
+inline constexpr std::uint64_t kMinAutoCellSample = 64;
 inline constexpr std::uint64_t kMaxAutoCellSample = 1024;
 
 /// --cell-sample auto. On a small grid the per-cell arrays stay in cache and
-/// counting every path costs little. On a large one each cell a ray crosses
-/// is a cache miss, and the share of a render they cost grows with N_c, so
-/// the sampling rate falls as N_c grows: 1 path in N_c / 8192, rounded down
-/// to a power of two (Sponza's 2.1 M cells: 1 in 256). Measured in
-/// stats/README.md: what it costs, and how near the sampled estimates are.
+/// counting every path costs little. On a larger one each counted cell is an
+/// atomic increment into arrays the threads share (1 in 8 paths on 118 k
+/// cells cost 13 %, 1 in 64 cost 5 %), and on millions of cells a cache miss
+/// as well, so the rate falls as N_c grows: 1 path in N_c / 8192 rounded
+/// down to a power of two, within [64, 1024] (Sponza's 2.1 M cells: 1 in
+/// 256). stats/README.md gives what it costs and how near the estimates are.
 inline std::uint64_t auto_cell_sample(std::uint64_t cells) {
   if (cells <= kFullCellCountLimit) return 1;
-  return std::min(kMaxAutoCellSample, std::bit_floor(cells / kCellsPerSampledPath));
+  return std::clamp(std::bit_floor(cells / kCellsPerSampledPath), kMinAutoCellSample, kMaxAutoCellSample);
 }
 
 /// Memory for per-cell statistics on a grid of `cells` cells with `copies`

@@ -85,7 +85,9 @@ TEST(RenderStats, ReportHasEveryClassAndNoNaN) {
 TEST(RenderStats, AutoCellSampleFallsWithTheGridSize) {
   EXPECT_EQ(auto_cell_sample(1000), 1u);
   EXPECT_EQ(auto_cell_sample(65536), 1u);
-  EXPECT_EQ(auto_cell_sample(65537), 8u);
+  EXPECT_EQ(auto_cell_sample(65537), 64u);
+  EXPECT_EQ(auto_cell_sample(118 * 1024), 64u);
+  EXPECT_EQ(auto_cell_sample(1 << 20), 128u);
   EXPECT_EQ(auto_cell_sample(215 * 102 * 97), 256u);  // Sponza at the default density
   EXPECT_EQ(auto_cell_sample(std::uint64_t(1) << 40), 1024u);
 }
