@@ -73,10 +73,10 @@ struct WalkCounts {
   std::uint64_t tests = 0;  ///< triangle tests made
   std::uint64_t skips = 0;  ///< tests the mailbox avoided
   /// The model's cells for the walked segment, 1 + sum_a |d_a| len / l_a
-  /// (seed paper eq 24 per axis), over the part of [tmin, end] inside the
-  /// grid, where end is the closest hit for closest-hit walks and tmax
-  /// otherwise (an any-hit walk's stop is not known: an upper bound); 0 if
-  /// that part is empty.
+  /// (seed paper eq 24 per axis) less 1/2 for each end on the grid box, over
+  /// the part of [tmin, end] inside the grid, where end is the closest hit
+  /// for closest-hit walks and tmax otherwise (an any-hit walk's stop is not
+  /// known: an upper bound); 0 if that part is empty.
   double predicted_cells = 0;
 };
 

@@ -140,11 +140,18 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
       const bool left = left_x == 0 || left_y == 0 || left_z == 0;
       counts.cells = std::uint64_t(1) + std::uint64_t(steps_left[0] - left_x) + std::uint64_t(steps_left[1] - left_y) +
                      std::uint64_t(steps_left[2] - left_z) - left;
-      const double end = Mode == GridWalk::closest ? std::min(t_out, double(best.t)) : t_out;
+      // The model's cells for the walked segment: 1 + sum_a |v_a| / l_a
+      // (eq 24 per axis) for a segment placed at random, less 1/2 for each
+      // end that lies on the grid box, which is a grid plane (NOTES: eq 24's
+      // leading 1 is for random segments; a chord through the whole box,
+      // both ends on planes, expects sum_a |v_a| / l_a, eq 22).
+      const double ray_end = Mode == GridWalk::closest ? double(best.t) : double(ray.tmax);
+      const double end = std::min(t_out, ray_end);
       if (end > t_in) {
         const double len = end - t_in;
-        counts.predicted_cells = 1.0 + std::abs(d.x) * len * m_inv_cell.x + std::abs(d.y) * len * m_inv_cell.y +
-                                 std::abs(d.z) * len * m_inv_cell.z;
+        const int ends_on_box = int(t_in > double(ray.tmin)) + int(t_out < ray_end);
+        counts.predicted_cells = 1.0 - 0.5 * ends_on_box + std::abs(d.x) * len * m_inv_cell.x +
+                                 std::abs(d.y) * len * m_inv_cell.y + std::abs(d.z) * len * m_inv_cell.z;
       }
       recorder.finish(counts);
     }

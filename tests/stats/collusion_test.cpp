@@ -102,6 +102,10 @@ TEST(CastIdentities, UniformLinesHaveKappaOneAndPtotOfEq22) {
                   tris == &random ? "soup " : "bunny", res.to_string().c_str(), m.collusion.p_tot, predicted,
                   m.collusion.p_tot / predicted, m.collusion.kappa.value_or(-1), m.collusion.kappa_eq25.value_or(-1));
       EXPECT_NEAR(m.collusion.p_tot / predicted, 1.0, 0.01) << m.collusion.p_tot << " vs " << predicted;
+      // The walk's own prediction, chord by chord (both ends on the box:
+      // sum_a |v_a| / l_a, no leading 1), agrees with what it walked.
+      EXPECT_NEAR(m.cells_per_ray_predicted / m.collusion.p_tot, 1.0, 0.01)
+          << m.cells_per_ray_predicted << " vs " << m.collusion.p_tot;
       ASSERT_TRUE(m.collusion.kappa);
       EXPECT_NEAR(*m.collusion.kappa, 1.0, 0.03);
       EXPECT_NEAR(*m.collusion.kappa_eq25, *m.collusion.kappa, 1e-9);
@@ -122,11 +126,19 @@ TEST(CastIdentities, SegmentsCrossOnePlusSumOfLengthOverCellCells) {
     const double length = 2.0 * (g.cell_size.x + g.cell_size.y + g.cell_size.z) / 3.0;  // two mean cell widths
     const auto segments = uniform_segments(g.lo, g.hi, length, 60000, 3);
     const CastMeasurement m = cast_with_counters(grid, segments, GridWalk::whole);
+    // Eq 24 per axis from the segments themselves (wholly inside the box).
+    double expected = 0;
+    for (const Ray& r : segments) {
+      const Vec3d v = Vec3d(r.d) * double(r.tmax - r.tmin);
+      expected += 1.0 + std::abs(v.x) / g.cell_size.x + std::abs(v.y) / g.cell_size.y + std::abs(v.z) / g.cell_size.z;
+    }
+    expected /= double(segments.size());
     SCOPED_TRACE(res.to_string());
-    std::printf("segments %-10s: cells per segment %.4f predicted %.4f (ratio %.4f)\n", res.to_string().c_str(),
-                m.collusion.p_tot, m.cells_per_ray_predicted, m.collusion.p_tot / m.cells_per_ray_predicted);
-    EXPECT_NEAR(m.collusion.p_tot / m.cells_per_ray_predicted, 1.0, 0.01)
-        << m.collusion.p_tot << " vs " << m.cells_per_ray_predicted;
+    std::printf("segments %-10s: cells per segment %.4f eq24 %.4f (ratio %.4f)\n", res.to_string().c_str(),
+                m.collusion.p_tot, expected, m.collusion.p_tot / expected);
+    EXPECT_NEAR(m.collusion.p_tot / expected, 1.0, 0.01) << m.collusion.p_tot << " vs " << expected;
+    // The walk sums the same prediction (in 1/1024 units).
+    EXPECT_NEAR(m.cells_per_ray_predicted, expected, 1e-3);
   }
 }
 
