@@ -63,6 +63,7 @@ int run_cast(const CastOptions& options) {
   AccelOptions accel_options;
   accel_options.grid_res = options.grid_res;
   accel_options.grid_density = options.grid_density;
+  accel_options.grid_max_bytes = options.grid_max_bytes;
   const auto accel = make_accelerator(options.accel, scene.triangles, accel_options);
   const auto* grid = dynamic_cast<const UniformGrid*>(accel.get());
 
@@ -102,7 +103,13 @@ int run_cast(const CastOptions& options) {
 
   nlohmann::ordered_json ray_section;
   if (grid) {
-    const CastMeasurement m = cast_with_counters(*grid, rays, walk, options.threads);
+    const std::uint64_t max_bytes = options.grid_max_bytes > 0 ? options.grid_max_bytes : default_grid_max_bytes();
+    const CastMeasurement m = cast_with_counters(*grid, rays, walk, options.threads, max_bytes);
+    report["stats"] = {{"per_cell", m.counters.per_cell()}};
+    if (!m.stats_note.empty()) {
+      report["stats_note"] = m.stats_note;
+      std::fprintf(stderr, "kappa: warning: %s\n", m.stats_note.c_str());
+    }
     if (options.rays == "lines")
       p_tot_predicted = p_tot_lines_eq22(hi - lo, grid->info().cell_size, double(grid->info().resolution.cells()));
     report["grid"] = grid_section(*grid, scene.triangles);

@@ -14,6 +14,7 @@ struct CastOptions {
   std::string accel = "grid";
   std::string grid_res = "auto";
   double grid_density = 0;
+  std::uint64_t grid_max_bytes = 0;  ///< grid plus per-cell counters (0 = a quarter of RAM)
   std::uint64_t seed = 0;
   double length = 0;  ///< segment length; 0 = two mean cell widths
   int threads = 0;

@@ -107,6 +107,9 @@ void add_cast_options(CLI::App& cast, CastOptions& o) {
       ->capture_default_str();
   cast.add_option("--grid-res", o.grid_res, "grid resolution: auto, N or NxNxN")->capture_default_str();
   cast.add_option("--grid-density", o.grid_density, "cells per triangle for --grid-res auto")->check(CLI::Range(1e-6, 1e6));
+  cast.add_option("--grid-max-bytes", o.grid_max_bytes,
+                  "refuse larger grids; per-cell counters beyond it are refused, totals kept (default: a quarter of RAM)")
+      ->check(CLI::Range(std::uint64_t(1), std::numeric_limits<std::uint64_t>::max()));
   cast.add_option("--seed", o.seed, "random seed")->capture_default_str();
   cast.add_option("--length", o.length, "segment length for --rays segments (default: two mean cell widths)")
       ->check(CLI::PositiveNumber);

@@ -18,12 +18,9 @@ ClassSummary summary(const ClassTotals& totals, std::uint64_t per_cell_rays, std
   m.totals = totals;
   m.per_cell_rays = per_cell_rays;
   const std::uint64_t rays = totals.rays;
-  if (!visits.empty()) {
-    m.collusion = collusion_sampled(visits, theta, per_cell_rays, rays, totals.cells, totals.refs);
-  } else {  // totals only: Theta's moments and what the totals give; what needs p_i undefined
-    m.collusion = collusion_sampled(std::vector<std::uint64_t>(theta.size(), 0), theta, 0, rays, totals.cells,
-                                    totals.refs);
-  }
+  // Without per-cell counts (empty visits): Theta's moments and what the
+  // totals give; what needs p_i is undefined.
+  m.collusion = collusion_sampled(visits, theta, visits.empty() ? 0 : per_cell_rays, rays, totals.cells, totals.refs);
   m.cells_per_ray_predicted = rays > 0 ? totals.predicted_cells() / double(rays) : 0.0;
   m.time_s = seconds;
   return m;

@@ -3,6 +3,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <chrono>
 #include <cmath>
@@ -19,24 +20,20 @@ std::vector<std::uint32_t> occupancies(const UniformGrid& grid) {
   return theta;
 }
 
-CastMeasurement cast_with_counters(const UniformGrid& grid, std::span<const Ray> rays, GridWalk walk, int threads) {
-  std::optional<tbb::global_control> limit;
-  if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+namespace {
 
-  const auto start = std::chrono::steady_clock::now();
-  const GridResolution res = grid.info().resolution;
-  tbb::enumerable_thread_specific<CellCounters> per_thread([res] { return CellCounters(res); });
+/// Walks `rays` with one Tally (per-cell or totals-only) per ray into
+/// thread-local counters.
+template <class Tally>
+void walk_all(const UniformGrid& grid, std::span<const Ray> rays, GridWalk walk,
+              tbb::enumerable_thread_specific<CellCounters>& per_thread) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024), [&](const auto& range) {
     CellCounters& counters = per_thread.local();
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
       bool hit = false;
-      CellCounters::Tally tally(counters);
+      Tally tally(counters);
       switch (walk) {
-        case GridWalk::closest: {
-          const auto h = grid.closest_hit(rays[i], tally);
-          hit = h.has_value();
-          break;
-        }
+        case GridWalk::closest: hit = grid.closest_hit(rays[i], tally).has_value(); break;
         case GridWalk::any: hit = grid.any_hit(rays[i], tally); break;
         case GridWalk::whole: hit = grid.walk_whole(rays[i], tally).has_value(); break;
       }
@@ -44,17 +41,42 @@ CastMeasurement cast_with_counters(const UniformGrid& grid, std::span<const Ray>
       counters.totals.hits += hit;
     }
   });
+}
+
+}  // namespace
+
+CastMeasurement cast_with_counters(const UniformGrid& grid, std::span<const Ray> rays, GridWalk walk, int threads,
+                                   std::uint64_t max_bytes) {
+  std::optional<tbb::global_control> limit;
+  if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+
+  const auto start = std::chrono::steady_clock::now();
+  const GridResolution res = grid.info().resolution;
+  const std::uint64_t workers = std::uint64_t(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+  const std::uint64_t need = cast_per_cell_bytes(res.cells(), workers);
+  const bool per_cell = need <= max_bytes && grid.info().bytes <= max_bytes - need;
+  tbb::enumerable_thread_specific<CellCounters> per_thread([&] { return CellCounters(res, per_cell); });
+  if (per_cell) walk_all<CellCounters::Tally>(grid, rays, walk, per_thread);
+  else walk_all<CellCounters::TotalsTally>(grid, rays, walk, per_thread);
   CastMeasurement m;
-  m.counters = CellCounters(res);
+  m.counters = CellCounters(res, per_cell);
   per_thread.combine_each([&](const CellCounters& c) { m.counters.merge(c); });
   m.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   m.theta = occupancies(grid);
-  m.collusion = collusion(m.counters.visits(), m.theta, m.counters.totals.rays);
+  const ClassTotals& t = m.counters.totals;
+  if (per_cell) {
+    m.collusion = collusion(m.counters.visits(), m.theta, t.rays);
+  } else {
+    m.collusion = collusion_sampled({}, m.theta, 0, t.rays, t.cells, t.refs);
+    m.stats_note = "per-cell statistics refused: " + std::to_string((need + (1u << 20) - 1) >> 20) +
+                   " MiB of counters and the grid would exceed --grid-max-bytes (" +
+                   std::to_string((max_bytes + (1u << 20) - 1) >> 20) + " MiB); per-class totals only";
+  }
 
   // Predicted cells per ray from each ray's own length inside the grid box,
   // summed by the walks (WalkCounts::predicted_cells).
-  m.cells_per_ray_predicted = rays.empty() ? 0.0 : m.counters.totals.predicted_cells() / double(rays.size());
+  m.cells_per_ray_predicted = rays.empty() ? 0.0 : t.predicted_cells() / double(rays.size());
   return m;
 }
 

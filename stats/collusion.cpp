@@ -13,10 +13,12 @@ CollusionStats collusion(std::span<const std::uint64_t> visits, std::span<const 
   s.N_r = rays;
   if (s.N_c == 0) return s;
   const double n = double(s.N_c);
-  const double inv_rays = rays > 0 ? 1.0 / double(rays) : 0.0;
+  const double inv_rays = rays > 0 && !visits.empty() ? 1.0 / double(rays) : 0.0;
+  // No per-cell counts (empty visits) reads as p_i = 0 everywhere.
+  const auto visits_at = [&](std::size_t i) { return visits.empty() ? 0.0 : double(visits[i]); };
   double sum_p = 0, sum_t = 0, sum_pt = 0;
   for (std::size_t i = 0; i < theta.size(); ++i) {
-    const double p = double(visits[i]) * inv_rays;
+    const double p = visits_at(i) * inv_rays;
     sum_p += p;
     sum_t += theta[i];
     sum_pt += p * theta[i];
@@ -29,7 +31,7 @@ CollusionStats collusion(std::span<const std::uint64_t> visits, std::span<const 
   // Second moments about the means (two-pass: stable for sparse grids).
   double var_p = 0, var_t = 0, cov = 0;
   for (std::size_t i = 0; i < theta.size(); ++i) {
-    const double dp = double(visits[i]) * inv_rays - s.p_avg, dt = double(theta[i]) - s.theta_avg;
+    const double dp = visits_at(i) * inv_rays - s.p_avg, dt = double(theta[i]) - s.theta_avg;
     var_p += dp * dp;
     var_t += dt * dt;
     cov += dp * dt;

@@ -23,7 +23,8 @@ struct CollusionStats {
   double refs_per_ray = 0;    ///< sum_i p_i Theta_i = p_avg theta_tot kappa
 };
 
-/// p_i = visits_i / rays. All sums in double, in a fixed order.
+/// p_i = visits_i / rays. All sums in double, in a fixed order. Empty
+/// `visits` (no per-cell counts) reads as p_i = 0.
 CollusionStats collusion(std::span<const std::uint64_t> visits, std::span<const std::uint32_t> theta,
                          std::uint64_t rays);
 
@@ -36,7 +37,9 @@ CollusionStats collusion(std::span<const std::uint64_t> visits, std::span<const 
 /// sum_i (X_i^2 - (1 - q) X_i) / q^2, which is exact in expectation when no
 /// path sends two rays of the class through one cell; kappa_eq25 is the
 /// sample's own ratio, so its distance from kappa shows the sampling error.
-/// With sample_rays == rays it is collusion(visits, theta, rays).
+/// With sample_rays == rays it is collusion(visits, theta, rays). With
+/// sample_rays == 0 (and empty `visits`: per-cell counts refused) sigma_p is
+/// NaN and r and kappa_eq25 are undefined; the totals' quantities stay.
 CollusionStats collusion_sampled(std::span<const std::uint64_t> visits, std::span<const std::uint32_t> theta,
                                  std::uint64_t sample_rays, std::uint64_t rays, std::uint64_t cells,
                                  std::uint64_t refs);

@@ -55,6 +55,28 @@ TEST(Cast, UniformLinesOnTheCornellBoxHaveKappaNearOne) {
   EXPECT_NEAR(c.at("p_tot").get<double>() / c.at("p_tot_predicted").get<double>(), 1.0, 0.01);
 }
 
+// A budget that holds the grid (64^3 cells, about 1 MiB) but not its
+// per-cell counters (about 22 MiB): totals only, with the same kappa.
+TEST(Cast, PerCellCountersOverTheBudgetAreRefusedButTotalsStay) {
+  const std::vector<std::string> args = {"--rays", "lines", "--n", "20000", "--grid-res", "64", "--threads", "2"};
+  const auto full = cast_report(args);
+  std::vector<std::string> tight = args;
+  tight.insert(tight.end(), {"--grid-max-bytes", "4000000"});
+  const auto refused = cast_report(tight);
+  EXPECT_TRUE(full.at("stats").at("per_cell").get<bool>());
+  EXPECT_FALSE(full.contains("stats_note"));
+  EXPECT_FALSE(refused.at("stats").at("per_cell").get<bool>());
+  EXPECT_NE(refused.at("stats_note").get<std::string>().find("refused"), std::string::npos);
+  const auto &a = full.at("rays").at("lines"), &b = refused.at("rays").at("lines");
+  // The same counts (from per-cell sums in one, from totals in the other).
+  for (const char* key : {"kappa", "p_tot", "refs_per_ray"})
+    EXPECT_NEAR(a.at(key).get<double>(), b.at(key).get<double>(), 1e-9 * a.at(key).get<double>()) << key;
+  EXPECT_TRUE(a.at("sigma_p").is_number());
+  EXPECT_TRUE(b.at("sigma_p").is_null());
+  EXPECT_TRUE(b.at("r").is_null());
+  EXPECT_TRUE(b.at("kappa_eq25").is_null());
+}
+
 TEST(Cast, NonGridAcceleratorsReportWhatApplies) {
   const auto j = cast_report({"--rays", "camera", "--n", "2000", "--accel", "naive"});
   EXPECT_FALSE(j.contains("grid"));
