@@ -23,6 +23,8 @@ RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSe
 #ifndef KAPPA_NO_STATS  // a build without statistics has no trace of them here (render_counting.cpp)
   if (const auto* grid = dynamic_cast<const UniformGrid*>(&accel); settings.stats && grid)
     result = render_counting(scene, *grid, settings, film, progress);
+  else if (settings.stats)
+    result = render_counting_classes(scene, accel, settings, film, progress);
   else
 #endif
     result = render_tiles(scene, settings, film, progress, [&] { return PlainQueries{accel}; });

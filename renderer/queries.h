@@ -39,6 +39,79 @@ struct PlainQueries {
   }
 };
 
+/// Class times without a clock read per query: every 64th query of a class
+/// is timed and counts 64 times. The clock's own cost, measured once, is
+/// taken off each timed query (it would otherwise be counted 64 times).
+class SampledClock {
+ public:
+  explicit SampledClock(RenderCounters& counters) : m_counters(counters) {}
+
+  template <typename F>
+  void timed(RenderClass k, F&& query) {
+    if ((m_counters.queries[k]++ & 63) != 0) {
+      query();
+      return;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    query();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    m_counters.sampled_seconds[k] += 64.0 * std::max(0.0, s - m_clock_overhead_s);
+  }
+
+ private:
+  /// Median of many back-to-back clock reads: what timing an empty query costs.
+  static double clock_overhead_seconds() {
+    static const double overhead = [] {
+      std::array<double, 1001> d;
+      for (double& x : d) {
+        const auto a = std::chrono::steady_clock::now();
+        x = std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
+      }
+      std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+      return d[d.size() / 2];
+    }();
+    return overhead;
+  }
+
+  RenderCounters& m_counters;
+  double m_clock_overhead_s = clock_overhead_seconds();
+};
+
+/// Statistics on with an accelerator other than the grid: per class what
+/// applies to any accelerator, the rays, their hits and their sampled time.
+class ClassQueries {
+ public:
+  ClassQueries(const Accelerator& accel, RenderCounters& counters) : m_accel(accel), m_counters(counters) {}
+
+  std::uint64_t rays = 0;
+
+  QueryWork work() const { return {}; }
+  void begin_path(std::uint64_t /*pixel*/, std::uint64_t /*sample*/) {}
+
+  std::optional<Hit> closest(const Ray& r, int depth) {
+    return counted<std::optional<Hit>>(class_of_depth(depth), [&] { return m_accel.closest_hit(r); });
+  }
+  bool shadow(const Ray& r) {
+    return counted<bool>(kShadow, [&] { return m_accel.any_hit(r); });
+  }
+
+ private:
+  template <typename Result, typename F>
+  Result counted(RenderClass k, F&& query) {
+    ++rays;
+    Result result{};
+    m_clock.timed(k, [&] { result = query(); });
+    ClassTotals& t = m_counters.classes[k].totals;
+    ++t.rays;
+    t.hits += bool(result);
+    return result;
+  }
+
+  const Accelerator& m_accel;
+  RenderCounters& m_counters;
+  SampledClock m_clock{m_counters};
+};
+
 /// Which paths count per cell: every path, or 1 in `every` drawn by a hash
 /// of (seed, pixel, sample), so the choice is the same whatever the thread
 /// count. Per-class totals always count every ray.
@@ -98,7 +171,7 @@ class CountingQueries {
     ++rays;
     CellCounters& c = m_counters.classes[k];
     Result result{};
-    timed(k, [&] {
+    m_clock.timed(k, [&] {
       if (m_path_per_cell) {
         result = walk_per_cell<Result>(c, walk);
       } else {
@@ -119,38 +192,9 @@ class CountingQueries {
     return walk(tally);
   }
 
-  /// Times every 64th query of a class with the clock and counts it 64
-  /// times: no clock read per query. The clock's own cost, measured once,
-  /// is taken off each timed query (it would otherwise be counted 64 times).
-  template <typename F>
-  void timed(RenderClass k, F&& query) {
-    if ((m_counters.queries[k]++ & 63) != 0) {
-      query();
-      return;
-    }
-    const auto start = std::chrono::steady_clock::now();
-    query();
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    m_counters.sampled_seconds[k] += 64.0 * std::max(0.0, s - m_clock_overhead_s);
-  }
-
-  /// Median of many back-to-back clock reads: what timing an empty query costs.
-  static double clock_overhead_seconds() {
-    static const double overhead = [] {
-      std::array<double, 1001> d;
-      for (double& x : d) {
-        const auto a = std::chrono::steady_clock::now();
-        x = std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
-      }
-      std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-      return d[d.size() / 2];
-    }();
-    return overhead;
-  }
-
   const UniformGrid& m_grid;
   RenderCounters& m_counters;
-  double m_clock_overhead_s = clock_overhead_seconds();
+  SampledClock m_clock{m_counters};
   CellSampling m_sampling;
   bool m_per_cell;
   bool m_path_per_cell = false;

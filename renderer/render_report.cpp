@@ -78,6 +78,24 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
                                     std::nullopt);
     j["stats"] = {{"per_cell", per_cell}, {"cell_sample", result.cell_sample}};
     if (!result.stats_note.empty()) j["stats_note"] = result.stats_note;
+  } else if (result.counters) {
+    // Another accelerator: per class what applies to any.
+    const RenderCounters& rc = *result.counters;
+    ClassTotals all;
+    double all_seconds = 0;
+    const auto section = [](const ClassTotals& t, double seconds) {
+      return nlohmann::ordered_json{
+          {"count", t.rays},
+          {"hit_fraction", t.rays > 0 ? nlohmann::ordered_json(double(t.hits) / double(t.rays)) : nlohmann::ordered_json()},
+          {"time_s", seconds}};
+    };
+    for (std::size_t k = 0; k < kRenderClasses; ++k) {
+      rays[kRenderClassNames[k]] = section(rc.classes[k].totals, rc.sampled_seconds[k]);
+      all += rc.classes[k].totals;
+      all_seconds += rc.sampled_seconds[k];
+    }
+    rays["all"] = section(all, all_seconds);
+    j["stats"] = {{"per_cell", false}};
   }
   j["rays"] = rays;
   j["cost"] = nullptr;  // without a calibration (kappa calibrate) there is no prediction
@@ -109,6 +127,13 @@ void print_report_table(const nlohmann::ordered_json& report) {
                 report["cost"]["predicted_s"].get<double>(), report["cost"]["measured_s"].get<double>(),
                 cell(report["cost"]["relative_error"], "%+.3f").c_str(), report["cost"]["T0_ns"].get<double>(),
                 report["cost"]["Ts_ns"].get<double>(), report["cost"]["Th_ns"].get<double>());
+  if (!report.contains("grid")) {  // another accelerator: what applies to any
+    std::printf("%-9s %11s %8s %10s\n", "rays", "count", "hits", "time_s");
+    for (const auto& [name, c] : report["rays"].items())
+      std::printf("%-9s %11s %8s %10s\n", name.c_str(), c["count"].dump().c_str(), cell(c["hit_fraction"], "%.3f").c_str(),
+                  cell(c["time_s"], "%.3f").c_str());
+    return;
+  }
   std::printf("%-9s %11s %8s %9s %8s %8s %8s %7s %7s\n", "rays", "count", "cells", "predicted", "tests", "refs",
               "p_tot", "r", "kappa");
   for (const auto& [name, c] : report["rays"].items()) {

@@ -222,15 +222,31 @@ TEST(RenderStats, SampledPerCellCountsKeepExactTotalsAndEstimateTheRest) {
   EXPECT_EQ(b["stats"]["cell_sample"].get<std::uint64_t>(), 8u);
 }
 
-TEST(RenderStats, NonGridAcceleratorsCountNothingPerClass) {
+// Naive (or Embree) with statistics on: per class the rays, hits and time,
+// the same rays and hits as the grid counts; nothing grid-specific.
+TEST(RenderStats, NonGridAcceleratorsReportWhatApplies) {
   const Scene scene = small_cornell();
   const auto naive = make_accelerator("naive", scene.triangles);
-  Film film(scene.width, scene.height, {});
+  const auto grid = make_accelerator("grid", scene.triangles);
+  Film film(scene.width, scene.height, {}), grid_film(scene.width, scene.height, {});
   const RenderResult result = render_with(scene, *naive, true, 0, film);
-  EXPECT_FALSE(result.counters);
+  const RenderResult on_grid = render_with(scene, *grid, true, 0, grid_film);
+  ASSERT_TRUE(result.counters);
   const auto report = render_report(scene, *naive, FrameFacts{32, 32, 4, 2, 0}, result);
   EXPECT_FALSE(report.contains("grid"));
-  EXPECT_TRUE(report["rays"].empty());
+  std::uint64_t total = 0;
+  for (std::size_t k = 0; k < kRenderClasses; ++k) {
+    const char* name = kRenderClassNames[k];
+    const auto& c = report["rays"][name];
+    EXPECT_EQ(c["count"].get<std::uint64_t>(), on_grid.counters->classes[k].totals.rays) << name;
+    EXPECT_EQ(result.counters->classes[k].totals.hits, on_grid.counters->classes[k].totals.hits) << name;
+    EXPECT_TRUE(c.contains("hit_fraction") && c.contains("time_s")) << name;
+    EXPECT_FALSE(c.contains("kappa") || c.contains("cells_per_ray")) << name;
+    total += c["count"].get<std::uint64_t>();
+  }
+  EXPECT_EQ(total, result.rays);
+  EXPECT_EQ(report["rays"]["all"]["count"].get<std::uint64_t>(), result.rays);
+  expect_finite_numbers(report);
 }
 
 }  // namespace
