@@ -11,13 +11,12 @@
 #include <limits>
 #include <stdexcept>
 
+#include "byte_size.h"
 #include "grid.h"
 #include "triangle_box.h"
 
 namespace kappa {
 namespace {
-
-std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
 
 /// Calls f(cell index) for every cell of `grid` that triangle t overlaps.
 template <typename F>
@@ -104,9 +103,9 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
                                 " cells, over the 2^32 - 1 a grid can index");
   if (2 * offset_bytes > options.max_bytes)
     throw std::invalid_argument("grid: " + m_info.resolution.to_string() + " = " + std::to_string(cells) +
-                                " cells need " + mib(2 * offset_bytes) +
+                                " cells need " + byte_size(2 * offset_bytes) +
                                 " for cell offsets and build cursors alone, over --grid-max-bytes (" +
-                                mib(options.max_bytes) + ")");
+                                byte_size(options.max_bytes) + ")");
   for (int a = 0; a < 3; ++a) {
     const double l = extent[a] / m_info.resolution[a];
     (a == 0 ? m_info.cell_size.x : a == 1 ? m_info.cell_size.y : m_info.cell_size.z) = l;
@@ -132,8 +131,8 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
   const std::uint64_t bytes = offset_bytes + total * sizeof(TriangleId);
   if (total >= std::numeric_limits<std::uint32_t>::max() || bytes > options.max_bytes)
     throw std::invalid_argument("grid: " + m_info.resolution.to_string() + " holds " + std::to_string(total) +
-                                " triangle references (" + mib(bytes) + "), over --grid-max-bytes (" +
-                                mib(options.max_bytes) + ") or 2^32 - 1 references");
+                                " triangle references (" + byte_size(bytes) + "), over --grid-max-bytes (" +
+                                byte_size(options.max_bytes) + ") or 2^32 - 1 references");
   m_offsets[cells] = std::uint32_t(total);
   m_info.theta_tot = total;
   m_occupied.assign((cells + 63) / 64, 0);

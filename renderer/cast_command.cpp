@@ -75,6 +75,8 @@ int run_cast(const CastOptions& options) {
   double length = options.length;
   Vec3d lo(scene.bounds().lo), hi(scene.bounds().hi);
   if (grid) lo = grid->info().lo, hi = grid->info().hi;
+  if (options.length > 0 && options.rays != "segments")
+    std::fprintf(stderr, "kappa: warning: --length applies to --rays segments only; ignored\n");
   if (options.rays == "lines") {
     rays = uniform_lines(lo, hi, options.n, options.seed);
   } else if (options.rays == "segments") {
@@ -90,6 +92,10 @@ int run_cast(const CastOptions& options) {
     rays = set.rays;
     walk = set.occlusion ? GridWalk::any : GridWalk::closest;
   }
+
+  if (rays.size() < options.n)
+    std::fprintf(stderr, "kappa: warning: %zu of the %zu rays asked for could be made (the report counts those)\n",
+                 rays.size(), options.n);
 
   nlohmann::ordered_json report;
   report["schema_version"] = kReportSchemaVersion;

@@ -52,7 +52,7 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
   render.add_option("--width", o.width, "film width (overrides the scene)")->check(CLI::Range(1, 1 << 15));
   render.add_option("--height", o.height, "film height (overrides the scene)")->check(CLI::Range(1, 1 << 15));
   render.add_option("--out", o.out, "output EXR (default out/<scene name>.exr)");
-  render.add_option("--aov", o.aov, "extra EXR channels: comma list of albedo, normal, depth");
+  render.add_option("--aov", o.aov, "extra EXR channels: comma list of albedo, normal, depth, cost");
   render.add_flag("-q,--quiet", o.quiet, "no progress bar, summary line or statistics table");
   render.add_option("--stats", o.stats, "per ray class: rays, hits and time; with the grid also cells, tests and hits, per cell and in total")
       ->check(CLI::IsMember({"on", "off"}))

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "accel/byte_size.h"
 #include "queries.h"
 #include "tile_loop.h"
 
@@ -50,8 +51,9 @@ RenderResult render_counting(const Scene& scene, const UniformGrid& grid, const 
   result.counters = merged;
   result.cell_sample = sampling.every;
   if (!per_cell)
-    result.stats_note = "per-cell statistics refused: " + std::to_string(need >> 20) +
-                        " MiB of counters would exceed --grid-max-bytes; per-class totals only";
+    result.stats_note = "per-cell statistics refused: " + byte_size(need) + " of counters and " +
+                        byte_size(grid.info().bytes) + " of grid would exceed --grid-max-bytes (" +
+                        byte_size(settings.stats_max_bytes) + "); per-class totals only";
   return result;
 }
 

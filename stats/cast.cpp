@@ -9,6 +9,7 @@
 #include <cmath>
 #include <optional>
 
+#include "accel/byte_size.h"
 #include "accel/grid_traverse.h"
 #include "cost_model.h"
 
@@ -69,9 +70,9 @@ CastMeasurement cast_with_counters(const UniformGrid& grid, std::span<const Ray>
     m.collusion = collusion(m.counters.visits(), m.theta, t.rays);
   } else {
     m.collusion = collusion_sampled({}, m.theta, 0, t.rays, t.cells, t.refs);
-    m.stats_note = "per-cell statistics refused: " + std::to_string((need + (1u << 20) - 1) >> 20) +
-                   " MiB of counters and the grid would exceed --grid-max-bytes (" +
-                   std::to_string((max_bytes + (1u << 20) - 1) >> 20) + " MiB); per-class totals only";
+    m.stats_note = "per-cell statistics refused: " + byte_size(need) + " of counters and " +
+                   byte_size(grid.info().bytes) + " of grid would exceed --grid-max-bytes (" + byte_size(max_bytes) +
+                   "); per-class totals only";
   }
 
   // Predicted cells per ray from each ray's own length inside the grid box,
