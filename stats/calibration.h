@@ -35,7 +35,8 @@ struct Calibration {
 };
 
 /// Least squares fit of seconds = T0 + cells Ts + refs Th over the samples,
-/// each weighted by 1/seconds (relative errors count alike). Throws
+/// each weighted by 1/seconds (relative errors count alike), with no
+/// constant negative (non-negative least squares). Throws
 /// std::invalid_argument with fewer than 3 samples or a singular system.
 Calibration fit_calibration(std::span<const CostSample> samples);
 

@@ -24,6 +24,33 @@ TEST(Calibration, FitRecoversExactConstants) {
   EXPECT_NEAR(c.seconds_per_ray(3, 4), (30 + 15 + 32) * 1e-9, 1e-15);
 }
 
+TEST(Calibration, NoConstantComesOutNegative) {
+  // Times that the free fit explains with T0 = -20 ns: the fit holds T0 at 0
+  // and is then the best non-negative one, which for T0 = 0 is the least
+  // squares fit of (cells, refs) alone; checked against that fit computed
+  // here in closed form.
+  std::vector<CostSample> samples;
+  for (double cells : {10.0, 40.0, 80.0})
+    for (double refs : {5.0, 20.0, 60.0}) samples.push_back({(-20 + 5 * cells + 8 * refs) * 1e-9, cells, refs, ""});
+  const Calibration c = fit_calibration(samples);
+  EXPECT_EQ(c.T0_ns, 0.0);
+  EXPECT_GT(c.Ts_ns, 0.0);
+  EXPECT_GT(c.Th_ns, 0.0);
+  // Weighted normal equations of the two-term fit (weights 1/b^2).
+  double a11 = 0, a12 = 0, a22 = 0, b1 = 0, b2 = 0;
+  for (const CostSample& s : samples) {
+    const double w = 1.0 / (s.seconds_per_ray * s.seconds_per_ray);
+    a11 += w * s.cells_per_ray * s.cells_per_ray;
+    a12 += w * s.cells_per_ray * s.refs_per_ray;
+    a22 += w * s.refs_per_ray * s.refs_per_ray;
+    b1 += w * s.cells_per_ray * s.seconds_per_ray;
+    b2 += w * s.refs_per_ray * s.seconds_per_ray;
+  }
+  const double det = a11 * a22 - a12 * a12;
+  EXPECT_NEAR(c.Ts_ns, (b1 * a22 - b2 * a12) / det * 1e9, 1e-6);
+  EXPECT_NEAR(c.Th_ns, (a11 * b2 - a12 * b1) / det * 1e9, 1e-6);
+}
+
 TEST(Calibration, TooFewOrDegenerateMeasurementsAreRefused) {
   std::vector<CostSample> two = {{1e-7, 1, 1, ""}, {2e-7, 2, 2, ""}};
   EXPECT_THROW(fit_calibration(two), std::invalid_argument);
