@@ -17,11 +17,11 @@ namespace kappa {
 /// A recorder that records nothing: every call compiles away, and so do the
 /// walk's counts, which nothing reads.
 ///
-/// The recorder interface: cell(index) on entering each cell,
+/// The recorder interface: cell(index, ix, iy, iz) on entering each cell,
 /// test() before each triangle test and hit() when one finds a (new closest)
 /// hit, all in the cell last entered; finish(counts) once at the end.
 struct NoRecorder {
-  void cell(std::uint64_t) {}
+  void cell(std::uint64_t, int, int, int) {}
   void test() {}
   void hit() {}
   void finish(const WalkCounts&) {}
@@ -93,11 +93,10 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
   t0 = std::max(double(ray.tmin), t0 - margin_t);
   if (t0 > t1 + margin_t) return false;
 
-  // Entry cell and, per axis, the steps left before the walk leaves the
-  // grid, the t of the next cell plane and the t between planes.
-  // Accumulating t_delta in double drifts by ~1e-13 of t over thousands of
-  // steps, far inside the cells' insertion margin.
-  int cell[3], steps_left[3];
+  // Entry cell and, per axis, the step, the t of the next cell plane and the
+  // t between planes. Accumulating t_delta in double drifts by ~1e-13 of t
+  // over thousands of steps, far inside the cells' insertion margin.
+  int cell[3], step[3], last[3];
   double t_next[3], t_delta[3];
   std::int64_t stride[3] = {1, g.resolution.nx, std::int64_t(g.resolution.nx) * g.resolution.ny};
   const Vec3d entry = o + d * t0;
@@ -107,16 +106,19 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
     cell[a] = std::clamp(int(std::floor((entry[a] - g.lo[a]) * m_inv_cell[a])), 0, n - 1);
     c += cell[a] * stride[a];
     if (d[a] > 0) {
-      steps_left[a] = n - cell[a];
+      step[a] = 1;
+      last[a] = n;
       t_next[a] = (g.lo[a] + (cell[a] + 1) * g.cell_size[a] - o[a]) * inv_d[a];
       t_delta[a] = g.cell_size[a] * inv_d[a];
     } else if (d[a] < 0) {
-      steps_left[a] = cell[a] + 1;
+      step[a] = -1;
+      last[a] = -1;
       t_next[a] = (g.lo[a] + cell[a] * g.cell_size[a] - o[a]) * inv_d[a];
       t_delta[a] = -g.cell_size[a] * inv_d[a];
       stride[a] = -stride[a];
     } else {
-      steps_left[a] = std::numeric_limits<int>::max();  // never reaches 0
+      step[a] = 0;
+      last[a] = -2;  // never reached
       t_next[a] = std::numeric_limits<double>::infinity();
       t_delta[a] = 0;
     }
@@ -125,21 +127,18 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
   const PreparedRay prepared(ray);
   detail::Mailbox mailbox;
   WalkCounts counts;
-  // The walk's state in scalars, so that it stays in registers: the cell
-  // index, and per axis the next plane's t, the t between planes and the
-  // steps left before the walk leaves the grid (no per-axis index, step or
-  // bound is needed in the loop).
+  // The walk's state in scalars, so that it stays in registers.
   double tx = t_next[0], ty = t_next[1], tz = t_next[2];
   const double dx = t_delta[0], dy = t_delta[1], dz = t_delta[2];
-  int left_x = steps_left[0], left_y = steps_left[1], left_z = steps_left[2];
-  const std::int64_t sx = stride[0], sy = stride[1], sz = stride[2];
+  int ix = cell[0], iy = cell[1], iz = cell[2];
   const auto done = [&](bool result) __attribute__((always_inline)) {
     if constexpr (!std::is_same_v<Recorder, NoRecorder>) {
-      // Cells visited, from the steps taken rather than a counter in the
-      // loop: each step enters one cell, except the one that left the grid.
-      const bool left = left_x == 0 || left_y == 0 || left_z == 0;
-      counts.cells = std::uint64_t(1) + std::uint64_t(steps_left[0] - left_x) + std::uint64_t(steps_left[1] - left_y) +
-                     std::uint64_t(steps_left[2] - left_z) - left;
+      // Cells visited, from where the walk started and stopped rather than a
+      // counter in the loop: each step moves one index by one, and a walk
+      // that left the grid has one index on its `last` value.
+      const bool left = ix == last[0] || iy == last[1] || iz == last[2];
+      counts.cells =
+          std::uint64_t(1 + std::abs(ix - cell[0]) + std::abs(iy - cell[1]) + std::abs(iz - cell[2])) - left;
       // The model's cells for the walked segment: 1 + sum_a |v_a| / l_a
       // (eq 24 per axis) for a segment placed at random, less 1/2 for each
       // end that lies on the grid box, which is a grid plane (NOTES: eq 24's
@@ -158,11 +157,8 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
     return result;
   };
   const double t_end = t1 + margin_t;
-  // Where the walk stops: the end of the ray's part in the grid or, once a
-  // closest hit is known, past it by the margin. One comparison a step.
-  double t_stop = t_end;
   while (true) {
-    recorder.cell(std::uint64_t(c));
+    recorder.cell(std::uint64_t(c), ix, iy, iz);
     // Empty cells (most of them) do nothing more: no offsets, no counts.
     if ((m_occupied[std::size_t(c) >> 6] >> (std::size_t(c) & 63)) & 1) {
       const std::uint32_t begin = m_offsets[std::size_t(c)], end = m_offsets[std::size_t(c) + 1];
@@ -188,26 +184,29 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
           if (best.triangle != before || best.t != before_t) recorder.hit();
         }
       }
-      if constexpr (!AnyHit && !Whole) {
-        if (best.valid()) t_stop = std::min(t_end, double(best.t) + margin_t);
-      }
     }
     // Leave through the nearest cell plane; on exact ties x, then y, then z.
     // At least one axis moves (d != 0), so the nearest plane is finite while
     // t_end is, and an axis that does not move is never the nearest.
-    // (Past the hit, the walk returns done(true), which is best.valid().)
-    if (!(std::min(tx, std::min(ty, tz)) <= t_stop)) break;
+    const double t_exit = std::min(tx, std::min(ty, tz));
+    if constexpr (!AnyHit && !Whole) {
+      if (best.valid() && double(best.t) + margin_t < t_exit) return done(true);
+    }
+    if (!(t_exit <= t_end)) break;
     if (tx <= ty && tx <= tz) {
-      if (--left_x == 0) break;
-      c += sx;
+      ix += step[0];
+      if (ix == last[0]) break;
+      c += stride[0];
       tx += dx;
     } else if (ty <= tz) {
-      if (--left_y == 0) break;
-      c += sy;
+      iy += step[1];
+      if (iy == last[1]) break;
+      c += stride[1];
       ty += dy;
     } else {
-      if (--left_z == 0) break;
-      c += sz;
+      iz += step[2];
+      if (iz == last[2]) break;
+      c += stride[2];
       tz += dz;
     }
   }

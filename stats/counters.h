@@ -77,7 +77,7 @@ class CellCounters {
     BasicTally(const BasicTally&) = delete;
     BasicTally& operator=(const BasicTally&) = delete;
 
-    void cell(std::uint64_t c) {
+    void cell(std::uint64_t c, int /*ix*/, int /*iy*/, int /*iz*/) {
       if constexpr (Mode != PerCell::no) {
         m_current = c;
         count(m_cells->visits, c);
