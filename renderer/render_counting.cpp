@@ -57,15 +57,4 @@ RenderResult render_counting(const Scene& scene, const UniformGrid& grid, const 
   return result;
 }
 
-RenderResult render_counting_classes(const Scene& scene, const Accelerator& accel, const RenderSettings& settings,
-                                     Film& film, const ProgressCallback& progress) {
-  tbb::enumerable_thread_specific<RenderCounters> per_thread([] { return RenderCounters(GridResolution{}, false); });
-  RenderResult result = render_tiles(scene, settings, film, progress,
-                                     [&] { return ClassQueries(accel, per_thread.local()); });
-  auto merged = std::make_shared<RenderCounters>(GridResolution{}, false);
-  for (const RenderCounters& c : per_thread) merged->merge(c);
-  result.counters = merged;
-  return result;
-}
-
 }  // namespace kappa
