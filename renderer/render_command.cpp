@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "accel/accel.h"
+#include "accel/byte_size.h"
 #include "accel/grid.h"
 #include "atomic_file.h"
 #include "error.h"
@@ -184,10 +185,10 @@ int run_render(const RenderOptions& options) {
   if (!options.quiet) {
     if (const auto* grid = dynamic_cast<const UniformGrid*>(accel.get())) {
       const GridInfo& g = grid->info();
-      std::fprintf(stderr, "kappa: grid %s, N_c %llu, N %llu, theta_tot %llu, %.1f MiB, built in %.3f s\n",
+      std::fprintf(stderr, "kappa: grid %s, N_c %llu, N %llu, theta_tot %llu, %s, built in %.3f s\n",
                    g.resolution.to_string().c_str(), static_cast<unsigned long long>(g.resolution.cells()),
                    static_cast<unsigned long long>(g.N), static_cast<unsigned long long>(g.theta_tot),
-                   double(g.bytes) / double(1 << 20), g.build_s);
+                   byte_size(g.bytes).c_str(), g.build_s);
     }
     std::fprintf(stderr, "kappa: %s %dx%d, %d spp, %s, %d threads: %.2f s, %llu rays, %.3g Mrays/s -> %s\n",
                  scene.name.c_str(), scene.width, scene.height, options.spp, std::string(accel->name()).c_str(), threads,
