@@ -40,15 +40,16 @@ struct PlainQueries {
 };
 
 /// Class times without a clock read per query: every 64th query of a class
-/// is timed and counts 64 times. The clock's own cost, measured once, is
+/// (by its index in the class, the class's ray count before it) is timed and
+/// counts 64 times. The clock's own cost, measured once, is
 /// taken off each timed query (it would otherwise be counted 64 times).
 class SampledClock {
  public:
   explicit SampledClock(RenderCounters& counters) : m_counters(counters) {}
 
   template <typename F>
-  void timed(RenderClass k, F&& query) {
-    if ((m_counters.queries[k]++ & 63) != 0) {
+  void timed(RenderClass k, std::uint64_t index, F&& query) {
+    if ((index & 63) != 0) {
       query();
       return;
     }
@@ -99,10 +100,9 @@ class ClassQueries {
   template <typename Result, typename F>
   Result counted(RenderClass k, F&& query) {
     ++rays;
-    Result result{};
-    m_clock.timed(k, [&] { result = query(); });
     ClassTotals& t = m_counters.classes[k].totals;
-    ++t.rays;
+    Result result{};
+    m_clock.timed(k, t.rays++, [&] { result = query(); });
     t.hits += bool(result);
     return result;
   }
@@ -171,7 +171,7 @@ class CountingQueries {
     ++rays;
     CellCounters& c = m_counters.classes[k];
     Result result{};
-    m_clock.timed(k, [&] {
+    m_clock.timed(k, c.totals.rays++, [&] {
       if (m_path_per_cell) {
         result = walk_per_cell<Result>(c, walk);
       } else {
@@ -179,7 +179,6 @@ class CountingQueries {
         result = walk(tally);
       }
     });
-    ++c.totals.rays;
     c.totals.hits += bool(result);
     return result;
   }

@@ -23,25 +23,34 @@ std::vector<std::uint32_t> occupancies(const UniformGrid& grid) {
 
 namespace {
 
-/// Walks `rays` with one Tally (per-cell or totals-only) per ray into
-/// thread-local counters.
-template <class Tally>
-void walk_all(const UniformGrid& grid, std::span<const Ray> rays, GridWalk walk,
+/// Walks `rays` (to the closest hit, any hit or along the whole chord: a
+/// template argument, not a branch per ray) with one Tally (per-cell or
+/// totals-only) per ray into thread-local counters.
+template <GridWalk Walk, class Tally>
+void walk_all(const UniformGrid& grid, std::span<const Ray> rays,
               tbb::enumerable_thread_specific<CellCounters>& per_thread) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024), [&](const auto& range) {
     CellCounters& counters = per_thread.local();
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
-      bool hit = false;
       Tally tally(counters);
-      switch (walk) {
-        case GridWalk::closest: hit = grid.closest_hit(rays[i], tally).has_value(); break;
-        case GridWalk::any: hit = grid.any_hit(rays[i], tally); break;
-        case GridWalk::whole: hit = grid.walk_whole(rays[i], tally).has_value(); break;
-      }
+      bool hit = false;
+      if constexpr (Walk == GridWalk::closest) hit = grid.closest_hit(rays[i], tally).has_value();
+      else if constexpr (Walk == GridWalk::any) hit = grid.any_hit(rays[i], tally);
+      else hit = grid.walk_whole(rays[i], tally).has_value();
       ++counters.totals.rays;
       counters.totals.hits += hit;
     }
   });
+}
+
+template <class Tally>
+void walk_all(const UniformGrid& grid, std::span<const Ray> rays, GridWalk walk,
+              tbb::enumerable_thread_specific<CellCounters>& per_thread) {
+  switch (walk) {
+    case GridWalk::closest: walk_all<GridWalk::closest, Tally>(grid, rays, per_thread); break;
+    case GridWalk::any: walk_all<GridWalk::any, Tally>(grid, rays, per_thread); break;
+    case GridWalk::whole: walk_all<GridWalk::whole, Tally>(grid, rays, per_thread); break;
+  }
 }
 
 }  // namespace

@@ -13,7 +13,6 @@
 
 #include "accel/grid.h"
 #include "split_counts.h"
-#include "zeroed_array.h"
 
 namespace kappa {
 
@@ -129,7 +128,6 @@ class CellCounters {
   std::vector<std::uint64_t> visits() const { return m_cells->visits.all(); }
   /// The visits of cell i, without copying the array.
   std::uint64_t visits_at(std::size_t i) const { return m_cells->visits.at(i); }
-  std::size_t cell_count() const { return m_cells ? m_cells->visits.size() : 0; }
   std::vector<std::uint64_t> tests_in() const { return m_cells->tests.all(); }
   std::vector<std::uint64_t> hits_in() const { return m_cells->hits.all(); }
 

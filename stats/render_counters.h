@@ -45,13 +45,11 @@ struct RenderCounters {
   std::array<CellCounters, kRenderClasses> classes;
   /// Sampled traversal time: every 64th query of a class is timed and counts 64 times.
   std::array<double, kRenderClasses> sampled_seconds{};
-  std::array<std::uint64_t, kRenderClasses> queries{};
 
   void merge(const RenderCounters& o) {
     for (std::size_t k = 0; k < kRenderClasses; ++k) {
       classes[k].merge(o.classes[k]);
       sampled_seconds[k] += o.sampled_seconds[k];
-      queries[k] += o.queries[k];
     }
   }
 };
