@@ -7,6 +7,7 @@
 #include <random>
 
 #include "accel/naive.h"
+#include "accel/triangle_box.h"
 #include "renderer/obj_loader.h"
 #include "test_util.h"
 
@@ -229,6 +230,36 @@ TEST(Grid, OccupancyCountsEveryTriangleInEveryCellItTouches) {
     for (std::uint64_t c = 0; c < 8; ++c) total += grid.cell(c).size();
     return total;
   }());
+}
+
+TEST(Grid, CellListsMatchABruteForceOverlapTestInEveryCell) {
+  // Only occupied cells have rows; a cell finds its row from the occupied
+  // cells counted before it. A grid of 9,361 cells spans 147 occupancy words,
+  // the last one partial, with empty and full words among them.
+  const std::vector<Triangle> tris = test::random_soup(300, 7, 0.2f);
+  const UniformGrid grid = make_grid(tris, GridResolution{37, 23, 11});
+  const GridInfo& g = grid.info();
+  std::uint64_t empty = 0, total = 0;
+  for (int z = 0; z < 11; ++z)
+    for (int y = 0; y < 23; ++y)
+      for (int x = 0; x < 37; ++x) {
+        const Vec3d lo{g.lo.x + x * g.cell_size.x, g.lo.y + y * g.cell_size.y, g.lo.z + z * g.cell_size.z};
+        const Vec3d hi{x + 1 == 37 ? g.hi.x : lo.x + g.cell_size.x, y + 1 == 23 ? g.hi.y : lo.y + g.cell_size.y,
+                       z + 1 == 11 ? g.hi.z : lo.z + g.cell_size.z};
+        const Vec3d m{g.margin, g.margin, g.margin};
+        std::vector<TriangleId> expected;
+        for (TriangleId id = 0; id < TriangleId(tris.size()); ++id)
+          if (triangle_overlaps_box(Vec3d(tris[id].v0), Vec3d(tris[id].v1), Vec3d(tris[id].v2), lo - m, hi + m))
+            expected.push_back(id);
+        const auto cell = grid.cell(grid.cell_index(x, y, z));
+        ASSERT_EQ(std::vector<TriangleId>(cell.begin(), cell.end()), expected) << "cell " << x << "," << y << "," << z;
+        empty += expected.empty();
+        total += expected.size();
+      }
+  EXPECT_EQ(g.empty_cells, empty);
+  EXPECT_EQ(g.theta_tot, total);
+  EXPECT_GT(empty, 0u);
+  EXPECT_LT(empty, 37u * 23 * 11);
 }
 
 TEST(Grid, ResolutionParsingAndChoice) {
