@@ -124,23 +124,38 @@ int run_bench(const BenchOptions& options) {
     built.push_back(std::move(b));
   }
 
+  // Accelerators take turns on each ray set, one pass each per round, the
+  // first of the round rotating: the machine's speed drifts (other tenants,
+  // clocks) over seconds, and turns put every accelerator through the same
+  // drift, so a ratio compares like with like.
   std::vector<Result> results;
-  for (const Built& b : built) {
-    for (const RaySet& set : sets) {
-      if (set.rays.empty()) continue;
-      for (int threads : options.threads) {
-        tbb::task_arena arena(threads);
-        std::uint64_t hits = 0;
-        time_pass(*b.accel, set, arena, hits);  // warm-up: caches, page faults, thread start
-        std::vector<double> rates;
-        for (int r = 0; r < options.repeat; ++r)
-          rates.push_back(double(set.rays.size()) / time_pass(*b.accel, set, arena, hits) * 1e-6);
-        results.push_back({b.name, ray_class_name(set.kind), threads, median_of(rates),
-                           *std::min_element(rates.begin(), rates.end()), *std::max_element(rates.begin(), rates.end()),
-                           hits});
+  for (const RaySet& set : sets) {
+    if (set.rays.empty()) continue;
+    for (int threads : options.threads) {
+      tbb::task_arena arena(threads);
+      std::vector<std::vector<double>> rates(built.size());
+      std::vector<std::uint64_t> hits(built.size(), 0);
+      for (std::size_t k = 0; k < built.size(); ++k)
+        time_pass(*built[k].accel, set, arena, hits[k]);  // warm-up: caches, page faults, thread start
+      for (int r = 0; r < options.repeat; ++r) {
+        for (std::size_t turn = 0; turn < built.size(); ++turn) {
+          const std::size_t k = (turn + std::size_t(r)) % built.size();
+          rates[k].push_back(double(set.rays.size()) / time_pass(*built[k].accel, set, arena, hits[k]) * 1e-6);
+        }
       }
+      for (std::size_t k = 0; k < built.size(); ++k)
+        results.push_back({built[k].name, ray_class_name(set.kind), threads, median_of(rates[k]),
+                           *std::min_element(rates[k].begin(), rates[k].end()),
+                           *std::max_element(rates[k].begin(), rates[k].end()), hits[k]});
     }
   }
+  // Listed accelerator by accelerator, as given.
+  std::stable_sort(results.begin(), results.end(), [&](const Result& x, const Result& y) {
+    const auto rank = [&](const std::string& name) {
+      return std::find_if(built.begin(), built.end(), [&](const Built& b) { return b.name == name; }) - built.begin();
+    };
+    return rank(x.accel) < rank(y.accel);
+  });
 
   auto embree_rate = [&](const Result& r) -> double {
     for (const Result& e : results)
