@@ -128,7 +128,7 @@ int run_bench(const BenchOptions& options) {
   // first of the round rotating: the machine's speed drifts (other tenants,
   // clocks) over seconds, and turns put every accelerator through the same
   // drift, so a ratio compares like with like.
-  std::vector<Result> results;
+  std::vector<std::vector<Result>> per_accel(built.size());
   for (const RaySet& set : sets) {
     if (set.rays.empty()) continue;
     for (int threads : options.threads) {
@@ -144,18 +144,14 @@ int run_bench(const BenchOptions& options) {
         }
       }
       for (std::size_t k = 0; k < built.size(); ++k)
-        results.push_back({built[k].name, ray_class_name(set.kind), threads, median_of(rates[k]),
-                           *std::min_element(rates[k].begin(), rates[k].end()),
-                           *std::max_element(rates[k].begin(), rates[k].end()), hits[k]});
+        per_accel[k].push_back({built[k].name, ray_class_name(set.kind), threads, median_of(rates[k]),
+                                 *std::min_element(rates[k].begin(), rates[k].end()),
+                                 *std::max_element(rates[k].begin(), rates[k].end()), hits[k]});
     }
   }
   // Listed accelerator by accelerator, as given.
-  std::stable_sort(results.begin(), results.end(), [&](const Result& x, const Result& y) {
-    const auto rank = [&](const std::string& name) {
-      return std::find_if(built.begin(), built.end(), [&](const Built& b) { return b.name == name; }) - built.begin();
-    };
-    return rank(x.accel) < rank(y.accel);
-  });
+  std::vector<Result> results;
+  for (const auto& rows : per_accel) results.insert(results.end(), rows.begin(), rows.end());
 
   auto embree_rate = [&](const Result& r) -> double {
     for (const Result& e : results)

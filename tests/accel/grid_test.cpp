@@ -233,9 +233,10 @@ TEST(Grid, OccupancyCountsEveryTriangleInEveryCellItTouches) {
 }
 
 TEST(Grid, CellListsMatchABruteForceOverlapTestInEveryCell) {
-  // Only occupied cells have rows; a cell finds its row from the occupied
-  // cells counted before it. A grid of 9,361 cells spans 147 occupancy words,
-  // the last one partial, with empty and full words among them.
+  // The stored lists (offsets into the id array, and the occupancy bit the
+  // walk reads first) against the definition of a cell's contents: the
+  // triangles overlapping its closed box inflated by the margin. 9,361 cells
+  // span 147 occupancy words, the last one partial.
   const std::vector<Triangle> tris = test::random_soup(300, 7, 0.2f);
   const UniformGrid grid = make_grid(tris, GridResolution{37, 23, 11});
   const GridInfo& g = grid.info();
