@@ -1,3 +1,3 @@
-#include "cli.h"
+#include "renderer/cli/cli.h"
 
 int main(int argc, char** argv) { return kappa::run_cli(argc, argv); }

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/scene.h"
+#include "renderer/scene/scene.h"
 
 namespace kappa::test {
 

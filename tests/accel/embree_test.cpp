@@ -16,9 +16,9 @@
 #include <random>
 
 #include "accel/naive.h"
-#include "renderer/obj_loader.h"
-#include "renderer/render_helpers.h"
-#include "renderer/scene_loader.h"
+#include "renderer/scene/obj_loader.h"
+#include "renderer/render/render_helpers.h"
+#include "renderer/scene/scene_loader.h"
 #include "test_util.h"
 
 namespace kappa {

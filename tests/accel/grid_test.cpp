@@ -8,7 +8,7 @@
 
 #include "accel/naive.h"
 #include "accel/triangle_box.h"
-#include "renderer/obj_loader.h"
+#include "renderer/scene/obj_loader.h"
 #include "test_util.h"
 
 namespace kappa {

@@ -11,7 +11,7 @@
 
 #include "accel/grid.h"
 #include "accel/grid_traverse.h"
-#include "renderer/obj_loader.h"
+#include "renderer/scene/obj_loader.h"
 #include "stats/cast.h"
 #include "stats/cost_model.h"
 #include "stats/synthetic_rays.h"

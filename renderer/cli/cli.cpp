@@ -1,0 +1,194 @@
+#include "renderer/cli/cli.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <limits>
+#include <new>
+
+#include "accel/accel.h"
+#include "accel/grid_resolution.h"
+#include "renderer/io/error.h"
+#include "renderer/commands/render_options.h"
+#include "renderer/commands/bench_command.h"
+#include "renderer/commands/calibrate_command.h"
+#include "renderer/commands/cast_command.h"
+#include "renderer/commands/render_command.h"
+#include "renderer/version.h"
+
+namespace kappa {
+namespace {
+
+void add_render_options(CLI::App& render, RenderOptions& o) {
+  render.add_option("scene", o.scene, "scene.json or .obj file")->required();
+  render.add_option("--accel", o.accel, "accelerator")->check(CLI::IsMember(accelerator_names()))->capture_default_str();
+  render.add_option("--grid-res", o.grid_res, "grid resolution: auto, N (cubic) or NxNxN")
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            try {
+              parse_grid_resolution(value);
+              return std::string();
+            } catch (const std::invalid_argument& e) {
+              std::string reason = e.what();  // drop the "--grid-res: " prefix CLI11 adds again
+              return reason.substr(reason.find(": ") + 2);
+            }
+          },
+          "auto|N|NxNxN"))
+      ->capture_default_str();
+  render.add_option("--grid-density", o.grid_density, "cells per triangle for --grid-res auto (default 32)")
+      ->check(CLI::Range(1e-6, 1e6));
+  render.add_option("--grid-max-bytes", o.grid_max_bytes, "refuse larger grids (default: a quarter of RAM)")
+      ->check(CLI::Range(std::uint64_t(1), std::numeric_limits<std::uint64_t>::max()));
+  render.add_option("--spp", o.spp, "samples per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  render.add_option("--max-depth", o.max_depth, "bounces after the camera ray (1 = direct lighting)")
+      ->check(CLI::Range(0, 1 << 20))
+      ->capture_default_str();
+  render.add_option("--rr-depth", o.rr_depth, "Russian roulette from this bounce on")
+      ->check(CLI::Range(0, 1 << 20))
+      ->capture_default_str();
+  render.add_flag("--no-rr", o.no_rr, "disable Russian roulette");
+  render.add_option("--seed", o.seed, "random seed")->capture_default_str();
+  render.add_option("--threads", o.threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+  render.add_option("--width", o.width, "film width (overrides the scene)")->check(CLI::Range(1, 1 << 15));
+  render.add_option("--height", o.height, "film height (overrides the scene)")->check(CLI::Range(1, 1 << 15));
+  render.add_option("--out", o.out, "output EXR (default out/<scene name>.exr)");
+  render.add_option("--aov", o.aov, "extra EXR channels: comma list of albedo, normal, depth, cost");
+  render.add_flag("-q,--quiet", o.quiet, "no progress bar, summary line or statistics table");
+  render.add_option("--stats", o.stats, "per ray class: rays, hits and time; with the grid also cells, tests and hits, per cell and in total")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  render.add_option("--cell-sample", o.cell_sample,
+                    "count per cell for 1 path in N (auto: every path on grids of up to 65536 cells, 1 in N_c/8192 rounded down to a power of two, within 64..1024, on larger ones); "
+                    "totals always count every ray")
+      ->capture_default_str();
+  render.add_option("--report", o.report, "write the per-frame JSON report (stats/README.md) here");
+  render.add_option("--cell-map", o.cell_map, "per-cell p_i and Theta_i projected along an axis, to F.exr or F.png");
+  render.add_option("--cell-map-axis", o.cell_map_axis, "projection axis of the cell map")
+      ->check(CLI::IsMember({"x", "y", "z"}))
+      ->capture_default_str();
+  render.add_option("--calibration", o.calibration, "cost model constants from kappa calibrate (default: beside the executable)");
+}
+
+void add_bench_options(CLI::App& bench, BenchOptions& o) {
+  bench.add_option("scene", o.scene, "scene.json or .obj file")->required();
+  bench.add_option("--accel", o.accels, "accelerators to compare")
+      ->delimiter(',')
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->check(CLI::IsMember(accelerator_names()))
+      ->capture_default_str();
+  bench.add_option("--rays", o.rays, "ray classes")
+      ->delimiter(',')
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->check(CLI::IsMember({"camera", "bounce", "shadow", "lines"}))
+      ->capture_default_str();
+  bench.add_option("--threads", o.threads, "thread counts")
+      ->delimiter(',')
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(CLI::Range(1, 4096))->capture_default_str();
+  bench.add_option("--repeat", o.repeat, "timed passes per figure (the median is reported)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  bench.add_option("--n", o.n, "rays per class")->check(CLI::Range(std::size_t(1), std::size_t(1) << 28))->capture_default_str();
+  bench.add_option("--seed", o.seed, "random seed of the ray sets")->capture_default_str();
+  bench.add_option("--json", o.json, "also write the figures as JSON");
+  bench.add_option("--grid-res", o.grid_res, "grid resolution: auto, N or NxNxN")->capture_default_str();
+  bench.add_option("--grid-density", o.grid_density, "cells per triangle for --grid-res auto")->check(CLI::Range(1e-6, 1e6));
+  bench.add_option("--naive-budget", o.naive_budget_s, "skip naive when its estimated run time exceeds this (s)")
+      ->capture_default_str();
+}
+
+void add_cast_options(CLI::App& cast, CastOptions& o) {
+  cast.add_option("scene", o.scene, "scene.json or .obj file")->required();
+  cast.add_option("--rays", o.rays, "ray distribution")
+      ->check(CLI::IsMember({"lines", "segments", "camera", "bounce", "shadow"}))
+      ->capture_default_str();
+  cast.add_option("--n", o.n, "rays to cast")->check(CLI::Range(std::size_t(1), std::size_t(1) << 30))->capture_default_str();
+  cast.add_option("--accel", o.accel, "accelerator (per-cell statistics need grid)")
+      ->check(CLI::IsMember(accelerator_names()))
+      ->capture_default_str();
+  cast.add_option("--grid-res", o.grid_res, "grid resolution: auto, N or NxNxN")->capture_default_str();
+  cast.add_option("--grid-density", o.grid_density, "cells per triangle for --grid-res auto")->check(CLI::Range(1e-6, 1e6));
+  cast.add_option("--grid-max-bytes", o.grid_max_bytes,
+                  "refuse larger grids; per-cell counters beyond it are refused, totals kept (default: a quarter of RAM)")
+      ->check(CLI::Range(std::uint64_t(1), std::numeric_limits<std::uint64_t>::max()));
+  cast.add_option("--seed", o.seed, "random seed")->capture_default_str();
+  cast.add_option("--length", o.length, "segment length for --rays segments (default: two mean cell widths)")
+      ->check(CLI::PositiveNumber);
+  cast.add_option("--threads", o.threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+  cast.add_option("--report", o.report, "write the JSON report here");
+  cast.add_flag("-q,--quiet", o.quiet, "no table on stdout");
+}
+
+void add_calibrate_options(CLI::App& calibrate, CalibrateOptions& o) {
+  calibrate.add_option("scenes", o.scenes, "scenes to measure (default: the Cornell box and the low-res bunny)");
+  calibrate.add_option("--density", o.densities, "grid densities (cells per triangle) to measure at")
+      ->delimiter(',')
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->check(CLI::Range(1e-6, 1e6))
+      ->capture_default_str();
+  calibrate.add_option("--n", o.n, "rays per class and grid")->check(CLI::Range(std::size_t(100), std::size_t(1) << 26))->capture_default_str();
+  calibrate.add_option("--repeat", o.repeat, "timed passes (median)")->check(CLI::Range(1, 100))->capture_default_str();
+  calibrate.add_option("--threads", o.threads,
+                       "threads walking at once; times are thread-seconds, as the render report measures them "
+                       "(default: all cores)")
+      ->check(CLI::Range(1, 4096));
+  calibrate.add_option("--out", o.out, "calibration file (default: kappa_calibration.json beside the executable)");
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+  CLI::App app{"Kappa: a path tracer that measures the cost of ray casting", "kappa"};
+  app.set_version_flag("--version", std::string("kappa ") + version_string());
+  app.require_subcommand(1);
+  // A repeated option takes its last value, so wrappers such as tools/run.sh
+  // can pass defaults that the user's own arguments override.
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  RenderOptions render_options;
+  CLI::App* render = app.add_subcommand("render", "render a scene to EXR");
+  add_render_options(*render, render_options);
+  BenchOptions bench_options;
+  CLI::App* bench = app.add_subcommand("bench", "time every accelerator on the same rays (Mrays/s)");
+  add_bench_options(*bench, bench_options);
+  CastOptions cast_options;
+  CLI::App* cast = app.add_subcommand("cast", "cast synthetic or renderer rays with statistics on (kappa, p_tot, ...)");
+  add_cast_options(*cast, cast_options);
+  CalibrateOptions calibrate_options;
+  CLI::App* calibrate = app.add_subcommand("calibrate", "measure the cost model's T0, Ts, Th on this machine");
+  add_calibrate_options(*calibrate, calibrate_options);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // CLI11's own codes are 105-109; Kappa's contract for bad options is 2.
+    std::fprintf(stderr, "kappa: error: %s (see kappa --help)\n", printable_line(e.what()).c_str());
+    return 2;
+  }
+
+  try {
+    if (render->parsed()) return run_render(render_options);
+    if (bench->parsed()) return run_bench(bench_options);
+    if (cast->parsed()) return run_cast(cast_options);
+    if (calibrate->parsed()) return run_calibrate(calibrate_options);
+  } catch (const std::invalid_argument& e) {  // options an accelerator refuses
+    std::fprintf(stderr, "kappa: error: %s\n", printable_line(e.what()).c_str());
+    return 2;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "kappa: error: %s\n", printable_line(e.what()).c_str());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "kappa: error: out of memory\n");
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "kappa: internal error: %s\n", printable_line(e.what()).c_str());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace kappa

@@ -1,0 +1,200 @@
+#include "renderer/commands/bench_command.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "accel/accel.h"
+#include "accel/embree.h"
+#include "accel/grid.h"
+#include "renderer/io/atomic_file.h"
+#include "renderer/render/bench_rays.h"
+#include "renderer/io/error.h"
+#include "renderer/scene/scene_loader.h"
+
+namespace kappa {
+namespace {
+
+/// Naive's rough speed on this hardware (triangle tests per second per
+/// thread), only to decide whether running it would take minutes.
+constexpr double kNaiveTestsPerSecond = 1.5e8;
+
+struct Built {
+  std::string name;
+  std::unique_ptr<Accelerator> accel;
+  double build_s = 0;
+  std::uint64_t bytes = 0;
+};
+
+std::uint64_t structure_bytes(const Accelerator& accel) {
+  if (const auto* g = dynamic_cast<const UniformGrid*>(&accel)) return g->info().bytes;
+  if (const auto* e = dynamic_cast<const EmbreeAccelerator*>(&accel)) return e->bytes();
+  return 0;  // naive keeps nothing beyond the scene's triangles
+}
+
+/// Seconds to trace every ray of `set` once with `threads` threads.
+double time_pass(const Accelerator& accel, const RaySet& set, tbb::task_arena& arena, std::uint64_t& hits) {
+  std::atomic<std::uint64_t> found{0};
+  const auto start = std::chrono::steady_clock::now();
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, set.rays.size(), 4096), [&](const auto& range) {
+      std::uint64_t local = 0;
+      if (set.occlusion) {
+        for (std::size_t i = range.begin(); i < range.end(); ++i) local += accel.any_hit(set.rays[i]);
+      } else {
+        for (std::size_t i = range.begin(); i < range.end(); ++i) local += accel.closest_hit(set.rays[i]).has_value();
+      }
+      found.fetch_add(local, std::memory_order_relaxed);
+    });
+  });
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  hits = found.load();
+  return s;
+}
+
+struct Result {
+  std::string accel, rays;
+  int threads = 1;
+  double median = 0, min = 0, max = 0;  ///< Mrays/s
+  std::uint64_t hits = 0;
+};
+
+double median_of(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+}  // namespace
+
+int run_bench(const BenchOptions& options) {
+  std::vector<RayClass> classes;
+  for (const auto& r : options.rays) classes.push_back(parse_ray_class(r));
+  for (const auto& a : options.accels) {
+    const auto names = accelerator_names();
+    if (std::find(names.begin(), names.end(), a) == names.end())
+      throw InputError("--accel: unknown accelerator '" + a + "'");
+  }
+  std::unique_ptr<AtomicOutput> json_out;
+  if (!options.json.empty()) json_out = std::make_unique<AtomicOutput>(options.json);
+
+  Warnings warnings;
+  const Scene scene = load_scene(options.scene, warnings);
+  for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", printable_line(w).c_str());
+  const std::size_t N = scene.triangles.size();
+
+  AccelOptions accel_options;
+  accel_options.grid_res = options.grid_res;
+  accel_options.grid_density = options.grid_density;
+
+  // Ray sets first, from the grid (any exact accelerator gives the same rays).
+  const auto reference = make_accelerator("grid", scene.triangles, accel_options);
+  std::vector<RaySet> sets;
+  for (RayClass c : classes) sets.push_back(make_ray_set(c, scene, *reference, options.n, options.seed));
+
+  std::printf("kappa bench: %s, %zu triangles, %zu rays per class, %d repeats (median of the repeats, after one warm-up pass)\n",
+              scene.name.c_str(), N, options.n, options.repeat);
+  for (const RaySet& s : sets)
+    std::printf("  %-7s %9zu rays: %s\n", ray_class_name(s.kind), s.rays.size(), s.note.c_str());
+
+  std::vector<Built> built;
+  for (const auto& name : options.accels) {
+    if (name == "naive") {
+      double thread_seconds = 0;
+      for (int t : options.threads) thread_seconds += 1.0 / t;
+      const double estimate = double(N) * double(options.n) * double(sets.size()) * double(options.repeat + 1) *
+                              thread_seconds / kNaiveTestsPerSecond;
+      if (estimate > options.naive_budget_s) {
+        std::printf("  note: naive skipped: %zu triangles x %zu rays would take about %.0f s (budget %.0f s)\n", N,
+                    options.n, estimate, options.naive_budget_s);
+        continue;
+      }
+    }
+    const auto start = std::chrono::steady_clock::now();
+    Built b{name, make_accelerator(name, scene.triangles, accel_options)};
+    b.build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    b.bytes = structure_bytes(*b.accel);
+    built.push_back(std::move(b));
+  }
+
+  // Accelerators take turns on each ray set, one pass each per round, the
+  // first of the round rotating: the machine's speed drifts (other tenants,
+  // clocks) over seconds, and turns put every accelerator through the same
+  // drift, so a ratio compares like with like.
+  std::vector<std::vector<Result>> per_accel(built.size());
+  for (const RaySet& set : sets) {
+    if (set.rays.empty()) continue;
+    for (int threads : options.threads) {
+      tbb::task_arena arena(threads);
+      std::vector<std::vector<double>> rates(built.size());
+      std::vector<std::uint64_t> hits(built.size(), 0);
+      for (std::size_t k = 0; k < built.size(); ++k)
+        time_pass(*built[k].accel, set, arena, hits[k]);  // warm-up: caches, page faults, thread start
+      for (int r = 0; r < options.repeat; ++r) {
+        for (std::size_t turn = 0; turn < built.size(); ++turn) {
+          const std::size_t k = (turn + std::size_t(r)) % built.size();
+          rates[k].push_back(double(set.rays.size()) / time_pass(*built[k].accel, set, arena, hits[k]) * 1e-6);
+        }
+      }
+      for (std::size_t k = 0; k < built.size(); ++k)
+        per_accel[k].push_back({built[k].name, ray_class_name(set.kind), threads, median_of(rates[k]),
+                                 *std::min_element(rates[k].begin(), rates[k].end()),
+                                 *std::max_element(rates[k].begin(), rates[k].end()), hits[k]});
+    }
+  }
+  // Listed accelerator by accelerator, as given.
+  std::vector<Result> results;
+  for (const auto& rows : per_accel) results.insert(results.end(), rows.begin(), rows.end());
+
+  auto embree_rate = [&](const Result& r) -> double {
+    for (const Result& e : results)
+      if (e.accel == "embree" && e.rays == r.rays && e.threads == r.threads) return e.median;
+    return 0;
+  };
+
+  std::printf("\n%-8s %9s %12s\n", "accel", "build_s", "bytes");
+  for (const Built& b : built) std::printf("%-8s %9.3f %12llu\n", b.name.c_str(), b.build_s, (unsigned long long)b.bytes);
+  std::printf("\n%-8s %-7s %7s %26s %10s %10s\n", "accel", "rays", "threads", "Mrays/s median (min-max)", "vs embree",
+              "hits");
+  for (const Result& r : results) {
+    const double e = embree_rate(r);
+    char range[64], ratio[32];
+    std::snprintf(range, sizeof range, "%.3f (%.3f-%.3f)", r.median, r.min, r.max);
+    if (e > 0) std::snprintf(ratio, sizeof ratio, "%.3f", r.median / e);
+    else std::snprintf(ratio, sizeof ratio, "-");
+    std::printf("%-8s %-7s %7d %26s %10s %10llu\n", r.accel.c_str(), r.rays.c_str(), r.threads, range, ratio,
+                (unsigned long long)r.hits);
+  }
+
+  if (json_out) {
+    nlohmann::ordered_json j;
+    j["scene"] = scene.source.string();
+    j["n"] = options.n;
+    j["repeat"] = options.repeat;
+    j["accels"] = nlohmann::ordered_json::object();
+    for (const Built& b : built) j["accels"][b.name] = {{"build_s", b.build_s}, {"bytes", b.bytes}};
+    j["results"] = nlohmann::ordered_json::array();
+    for (const Result& r : results) {
+      const double e = embree_rate(r);
+      j["results"].push_back({{"accel", r.accel},
+                              {"rays", r.rays},
+                              {"threads", r.threads},
+                              {"mrays_per_s_median", r.median},
+                              {"mrays_per_s_min", r.min},
+                              {"mrays_per_s_max", r.max},
+                              {"ratio_to_embree", e > 0 ? nlohmann::ordered_json(r.median / e) : nlohmann::ordered_json()},
+                              {"hits", r.hits}});
+    }
+    write_and_commit(*json_out, j.dump(2) + "\n");
+  }
+  return 0;
+}
+
+}  // namespace kappa

@@ -1,0 +1,203 @@
+#include "renderer/commands/render_command.h"
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <unistd.h>
+
+#include <charconv>
+#include <chrono>
+#include <optional>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "accel/accel.h"
+#include "accel/byte_size.h"
+#include "accel/grid.h"
+#include "renderer/io/atomic_file.h"
+#include "renderer/io/error.h"
+#include "renderer/io/exr_output.h"
+#include "renderer/render/integrator.h"
+#include "renderer/cli/progress.h"
+#include "renderer/commands/calibrate_command.h"
+#include "renderer/io/cell_map.h"
+#include "renderer/report/render_report.h"
+#include "renderer/scene/scene_loader.h"
+#include "renderer/version.h"
+
+namespace kappa {
+namespace {
+
+AovSelection parse_aovs(const std::string& list) {
+  AovSelection aov;
+  std::stringstream ss(list);
+  std::string name;
+  while (std::getline(ss, name, ',')) {
+    if (name == "albedo") aov.albedo = true;
+    else if (name == "normal") aov.normal = true;
+    else if (name == "depth") aov.depth = true;
+    else if (name == "cost") aov.cost = true;
+    else if (!name.empty()) throw InputError("--aov: unknown AOV '" + name + "' (expected albedo, normal, depth, cost)");
+  }
+  return aov;
+}
+
+std::filesystem::path output_path(const RenderOptions& options, const Scene& scene) {
+  if (!options.out.empty()) return options.out;
+  const std::filesystem::path dir = "out";
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError("out: cannot create the output folder: " + ec.message());
+  return dir / (scene.name + ".exr");
+}
+
+std::string grid_resolution_text(const Accelerator& accel) {
+  const auto* grid = dynamic_cast<const UniformGrid*>(&accel);
+  return grid ? grid->info().resolution.to_string() : std::string("none");
+}
+
+}  // namespace
+
+std::string RenderOptions::to_string() const {
+  std::ostringstream s;
+  s << "scene=" << scene << " accel=" << accel << " grid_res=" << grid_res << " grid_density=" << grid_density
+    << " grid_max_bytes=" << grid_max_bytes << " spp=" << spp << " max_depth=" << max_depth
+    << " rr_depth=" << (no_rr ? -1 : rr_depth) << " seed=" << seed << " threads=" << threads << " width=" << width
+    << " height=" << height << " out=" << out << " aov=" << aov;
+  return s.str();
+}
+
+int run_render(const RenderOptions& options) {
+  const AovSelection aov = parse_aovs(options.aov);
+  if (!options.cell_map.empty() && (options.stats != "on" || options.accel != "grid"))
+    throw InputError("--cell-map: needs --accel grid and --stats on");
+  if (const auto ext = std::filesystem::path(options.cell_map).extension(); !options.cell_map.empty() && ext != ".exr" &&
+                                                                            ext != ".png")
+    throw InputError("--cell-map: '" + options.cell_map + "' must end in .exr or .png");
+#ifdef KAPPA_NO_STATS
+  if (options.stats == "on") throw InputError("--stats on: this kappa was built without statistics (-DKAPPA_STATS=OFF)");
+#endif
+  std::uint64_t cell_sample = 0;  // auto
+  if (options.cell_sample != "auto") {
+    std::uint64_t n = 0;
+    const char* first = options.cell_sample.data();
+    const char* last = first + options.cell_sample.size();
+    const auto [end, ec] = std::from_chars(first, last, n);
+    if (ec != std::errc() || end != last || n < 1 || n > (std::uint64_t(1) << 20))
+      throw InputError("--cell-sample: '" + options.cell_sample + "' is neither auto nor a whole number from 1 to 1048576");
+    cell_sample = n;
+  }
+  if (aov.cost && (options.stats != "on" || options.accel != "grid"))
+    throw InputError("--aov cost: needs --accel grid and --stats on (it counts the grid's cells and tests)");
+  if (!options.out.empty() && std::filesystem::path(options.out).extension() != ".exr")
+    throw InputError("--out: '" + options.out + "' must end in .exr");
+
+  Warnings warnings;
+  Scene scene = load_scene(options.scene, warnings);
+  for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", printable_line(w).c_str());
+  if (options.width > 0) scene.width = options.width;
+  if (options.height > 0) scene.height = options.height;
+  if (scene.camera_framed)  // frame again for the film's final aspect ratio
+    scene.camera = framing_camera(scene.bounds(), scene.camera.vfov_deg, float(scene.width) / float(scene.height));
+
+  // Claim the outputs before rendering: an unwritable path fails now, not
+  // after an hour of work.
+  AtomicOutput output(output_path(options, scene));
+  std::unique_ptr<AtomicOutput> report_out, cell_map_out;
+  if (!options.report.empty()) report_out = std::make_unique<AtomicOutput>(options.report);
+  if (!options.cell_map.empty()) cell_map_out = std::make_unique<AtomicOutput>(options.cell_map);
+  // The calibration too is read now: a bad file must not cost a finished render.
+  std::optional<Calibration> calibration;
+  try {
+    calibration = load_calibration(options.calibration.empty() ? default_calibration_path()
+                                                               : std::filesystem::path(options.calibration));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  if (!calibration && !options.calibration.empty())
+    throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
+
+  // --threads limits the accelerator build as well as the render.
+  std::optional<tbb::global_control> thread_limit;
+  if (options.threads > 0)
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(options.threads));
+
+  const auto build_start = std::chrono::steady_clock::now();
+  AccelOptions accel_options;
+  accel_options.grid_res = options.grid_res;
+  accel_options.grid_density = options.grid_density;
+  accel_options.grid_max_bytes = options.grid_max_bytes;
+  const std::unique_ptr<Accelerator> accel = make_accelerator(options.accel, scene.triangles, accel_options);
+  const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
+
+  RenderSettings settings;
+  settings.spp = options.spp;
+  settings.max_depth = options.max_depth;
+  settings.rr_depth = options.no_rr ? -1 : options.rr_depth;
+  settings.seed = options.seed;
+  settings.threads = options.threads;
+  settings.aov = aov;
+  settings.stats = options.stats == "on";
+  settings.stats_max_bytes = options.grid_max_bytes > 0 ? options.grid_max_bytes : default_grid_max_bytes();
+  settings.cell_sample = cell_sample;
+  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+
+  Film film(scene.width, scene.height, aov);
+  ProgressBar bar(!options.quiet && ::isatty(STDERR_FILENO));
+  const RenderResult result =
+      render(scene, *accel, settings, film, [&bar](std::size_t done, std::size_t total) { bar.update(done, total); });
+  bar.finish();
+  if (result.rejected_samples > 0)
+    std::fprintf(stderr, "kappa: warning: %llu samples had non-finite radiance and were replaced by 0\n",
+                 static_cast<unsigned long long>(result.rejected_samples));
+
+  const Metadata metadata = {
+      {"Software", std::string("Kappa ") + version_string()},
+      {"kappa:version", std::string(version_string())},
+      {"kappa:scene", scene.source.string()},
+      {"kappa:spp", options.spp},
+      {"kappa:seed", std::to_string(options.seed)},
+      {"kappa:accel", std::string(accel->name())},
+      {"kappa:max_depth", options.max_depth},
+      {"kappa:rr_depth", settings.rr_depth},
+      {"kappa:threads", threads},
+      {"kappa:render_time_s", float(result.seconds)},
+      {"kappa:accel_build_s", float(build_s)},
+      {"kappa:grid_res", grid_resolution_text(*accel)},
+      {"kappa:rays", std::to_string(result.rays)},
+  };
+  write_exr(output.temp_path(), film, metadata);
+  const nlohmann::ordered_json report = render_report(
+      scene, *accel, FrameFacts{scene.width, scene.height, options.spp, threads, options.seed}, result, calibration);
+
+  if (cell_map_out && result.counters) {
+    if (result.counters->classes[0].per_cell()) {
+      const auto* grid = dynamic_cast<const UniformGrid*>(accel.get());
+      write_cell_map(*cell_map_out, *grid, *result.counters, options.cell_map_axis[0] - 'x');
+    } else {
+      std::fprintf(stderr, "kappa: warning: --cell-map skipped: per-cell statistics were refused for this frame\n");
+    }
+  }
+  output.commit();
+  if (report_out) write_and_commit(*report_out, report.dump(2) + "\n");
+  if (!result.stats_note.empty()) std::fprintf(stderr, "kappa: warning: %s\n", result.stats_note.c_str());
+
+  if (!options.quiet) {
+    if (const auto* grid = dynamic_cast<const UniformGrid*>(accel.get())) {
+      const GridInfo& g = grid->info();
+      std::fprintf(stderr, "kappa: grid %s, N_c %llu, N %llu, theta_tot %llu, %s, built in %.3f s\n",
+                   g.resolution.to_string().c_str(), static_cast<unsigned long long>(g.resolution.cells()),
+                   static_cast<unsigned long long>(g.N), static_cast<unsigned long long>(g.theta_tot),
+                   byte_size(g.bytes).c_str(), g.build_s);
+    }
+    std::fprintf(stderr, "kappa: %s %dx%d, %d spp, %s, %d threads: %.2f s, %llu rays, %.3g Mrays/s -> %s\n",
+                 scene.name.c_str(), scene.width, scene.height, options.spp, std::string(accel->name()).c_str(), threads,
+                 result.seconds, static_cast<unsigned long long>(result.rays),
+                 result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0, output.target().c_str());
+    std::fflush(stderr);
+    print_report_table(report);
+  }
+  return 0;
+}
+
+}  // namespace kappa

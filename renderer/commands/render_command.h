@@ -1,0 +1,11 @@
+// `kappa render`: load, build the accelerator, render, write the EXR atomically.
+#pragma once
+
+#include "renderer/commands/render_options.h"
+
+namespace kappa {
+
+/// Throws InputError for bad input; returns the process exit code otherwise.
+int run_render(const RenderOptions& options);
+
+}  // namespace kappa

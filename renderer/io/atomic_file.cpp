@@ -1,0 +1,118 @@
+#include "renderer/io/atomic_file.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <mutex>
+
+#include "renderer/io/error.h"
+
+namespace kappa {
+namespace {
+
+// The signal handler may only call async-signal-safe functions, so the paths
+// to remove live in fixed buffers, published through atomic flags.
+constexpr int kSlots = 8;
+constexpr std::size_t kPathMax = 4096;
+std::array<char[kPathMax], kSlots> g_paths;
+std::array<std::atomic<bool>, kSlots> g_claimed{};  ///< slot taken
+std::array<std::atomic<bool>, kSlots> g_ready{};    ///< path written
+std::once_flag g_handlers_installed;
+
+extern "C" void remove_temporaries_and_exit(int sig) {
+  for (int i = 0; i < kSlots; ++i)
+    if (g_ready[i].load()) ::unlink(g_paths[i]);
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+}
+
+void install_handlers() {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    // A signal the parent ignores (nohup, a background job's Ctrl-C) stays ignored.
+    struct sigaction old {};
+    ::sigaction(sig, nullptr, &old);
+    if (old.sa_handler == SIG_IGN) continue;
+    struct sigaction sa {};
+    sa.sa_handler = remove_temporaries_and_exit;
+    sigemptyset(&sa.sa_mask);
+    ::sigaction(sig, &sa, nullptr);
+  }
+}
+
+int claim_slot(const std::string& path) {
+  if (path.size() >= kPathMax) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    if (g_claimed[i].exchange(true)) continue;
+    std::strcpy(g_paths[i], path.c_str());
+    g_ready[i].store(true);  // only now may the handler read the path
+    return i;
+  }
+  return -1;
+}
+
+void release_slot(int i) {
+  g_ready[i].store(false);
+  g_claimed[i].store(false);
+}
+
+}  // namespace
+
+AtomicOutput::AtomicOutput(const std::filesystem::path& target) : m_target(target) {
+  std::call_once(g_handlers_installed, install_handlers);
+  std::error_code ec;
+  if (std::filesystem::is_directory(target, ec)) fail(target, 0, "cannot write: it is a directory");
+  const std::filesystem::path dir = target.parent_path().empty() ? "." : target.parent_path();
+  if (!std::filesystem::is_directory(dir, ec)) fail(target, 0, "cannot write: folder '" + dir.string() + "' does not exist");
+  // Same folder as the target, so the final rename cannot cross file systems;
+  // the .exr ending keeps format detection by extension working.
+  m_temp = dir / ("." + target.filename().string() + ".kappa-" + std::to_string(::getpid()) + ".tmp" +
+                  target.extension().string());
+  // Registered for the signal handler before it exists, so no interrupt can
+  // leave it behind.
+  m_slot = claim_slot(m_temp.string());
+  if (m_slot < 0) fail(target, 0, "cannot write: path too long or too many outputs at once");
+  const int fd = ::open(m_temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) {
+    const int err = errno;
+    release_slot(m_slot);
+    m_slot = -1;
+    m_committed = true;  // nothing to remove
+    fail(target, 0, std::string("cannot write: ") + std::strerror(err));
+  }
+  ::close(fd);
+}
+
+AtomicOutput::~AtomicOutput() {
+  if (!m_committed) ::unlink(m_temp.c_str());
+  if (m_slot >= 0) release_slot(m_slot);
+}
+
+void write_and_commit(AtomicOutput& output, const std::string& text) {
+  {
+    std::ofstream out(output.temp_path(), std::ios::binary);
+    out << text;
+    out.flush();
+    if (!out) fail(output.target(), 0, "cannot write");
+  }
+  output.commit();
+}
+
+void AtomicOutput::commit() {
+  // On disk before it takes the target's name, so that a crash right after
+  // cannot leave an empty file there.
+  if (const int fd = ::open(m_temp.c_str(), O_RDONLY); fd >= 0) {
+    ::fsync(fd);
+    ::close(fd);
+  }
+  if (std::rename(m_temp.c_str(), m_target.c_str()) != 0)
+    fail(m_target, 0, std::string("cannot replace: ") + std::strerror(errno));
+  m_committed = true;
+}
+
+}  // namespace kappa

@@ -1,0 +1,52 @@
+#include "renderer/io/exr_output.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include "renderer/io/error.h"
+
+namespace kappa {
+
+std::vector<std::string> exr_channel_names(const Film& film) {
+  std::vector<std::string> names = {"R", "G", "B"};
+  if (!film.albedo.empty()) names.insert(names.end(), {"albedo.R", "albedo.G", "albedo.B"});
+  if (!film.normal.empty()) names.insert(names.end(), {"normal.X", "normal.Y", "normal.Z"});
+  if (!film.depth.empty()) names.push_back("depth.Z");
+  if (!film.cost_cells.empty()) names.insert(names.end(), {"cost.cells", "cost.tests"});
+  return names;
+}
+
+void write_exr(const std::filesystem::path& path, const Film& film, const Metadata& metadata) {
+  const std::vector<std::string> names = exr_channel_names(film);
+  const std::size_t nc = names.size();
+  std::vector<float> pixels(film.pixels() * nc);
+  for (std::size_t i = 0; i < film.pixels(); ++i) {
+    float* out = &pixels[i * nc];
+    for (int c = 0; c < 3; ++c) *out++ = film.rgb[3 * i + std::size_t(c)];
+    if (!film.albedo.empty())
+      for (int c = 0; c < 3; ++c) *out++ = film.albedo[3 * i + std::size_t(c)];
+    if (!film.normal.empty())
+      for (int c = 0; c < 3; ++c) *out++ = film.normal[3 * i + std::size_t(c)];
+    if (!film.depth.empty()) *out++ = film.depth[i];
+    if (!film.cost_cells.empty()) {
+      *out++ = film.cost_cells[i];
+      *out++ = film.cost_tests[i];
+    }
+  }
+
+  OIIO::ImageSpec spec(film.width, film.height, int(nc), OIIO::TypeDesc::FLOAT);
+  spec.channelnames = names;
+  spec.alpha_channel = -1;
+  spec.z_channel = film.depth.empty() ? -1 : int(film.cost_cells.empty() ? nc - 1 : nc - 3);
+  spec.attribute("compression", "zip");
+  for (const auto& [key, value] : metadata) {
+    std::visit([&, k = key](const auto& v) { spec.attribute(k, v); }, value);
+  }
+
+  auto out = OIIO::ImageOutput::create("openexr");
+  if (!out) fail(path, 0, "OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
+  if (!out->open(path.string(), spec)) fail(path, 0, "cannot write EXR: " + out->geterror());
+  if (!out->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) fail(path, 0, "cannot write EXR: " + out->geterror());
+  if (!out->close()) fail(path, 0, "cannot write EXR: " + out->geterror());
+}
+
+}  // namespace kappa

@@ -1,0 +1,26 @@
+// Writes a film to OpenEXR (through OpenImageIO): float RGB, the selected AOVs
+// as named channels, and the render's metadata as "kappa:*" attributes.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "renderer/render/film.h"
+
+namespace kappa {
+
+using MetadataValue = std::variant<std::string, int, float>;
+using Metadata = std::vector<std::pair<std::string, MetadataValue>>;
+
+/// Channel names in file order: R, G, B, then albedo.{R,G,B}, normal.{X,Y,Z},
+/// depth.Z, cost.cells and cost.tests for the AOVs present in the film.
+std::vector<std::string> exr_channel_names(const Film& film);
+
+/// Writes `film` to `path` directly (callers wanting atomicity pass the
+/// temporary of an AtomicOutput). Throws InputError on failure.
+void write_exr(const std::filesystem::path& path, const Film& film, const Metadata& metadata);
+
+}  // namespace kappa

@@ -1,0 +1,146 @@
+#include "renderer/render/bench_rays.h"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "renderer/render/camera.h"
+#include "renderer/render/interaction.h"
+#include "renderer/render/lights.h"
+#include "renderer/render/sampling.h"
+
+namespace kappa {
+namespace {
+
+/// A camera hit: where bounce and shadow rays start.
+struct SurfaceSample {
+  SurfacePoint sp;
+  Vec3f n;  ///< normal facing the camera ray's origin
+};
+
+Ray camera_ray(const Scene& scene, const Camera& camera, std::size_t i, std::size_t n, std::uint64_t seed) {
+  const std::size_t pixels = std::size_t(scene.width) * std::size_t(scene.height);
+  // Fewer rays than pixels: spread them evenly over the film; more: cycle.
+  // Either way ray i + strata lands on the same pixel with a new sample.
+  const std::size_t strata = std::min(n, pixels);
+  const std::size_t pixel = std::size_t(double(i % strata) * double(pixels) / double(strata));
+  Rng rng(seed, pixel, i / strata);
+  const float x = float(pixel % std::size_t(scene.width)) + rng.uniform();
+  const float y = float(pixel / std::size_t(scene.width)) + rng.uniform();
+  return camera.generate_ray(x, y);
+}
+
+/// Camera hits, in order, until `n` are found or 4n camera rays were tried.
+std::vector<SurfaceSample> camera_hits(const Scene& scene, const Accelerator& accel, std::size_t n,
+                                       std::uint64_t seed) {
+  const Camera camera(scene.camera, scene.width, scene.height);
+  std::vector<SurfaceSample> hits;
+  hits.reserve(n);
+  for (std::size_t i = 0; i < 4 * n && hits.size() < n; ++i) {
+    const Ray r = camera_ray(scene, camera, i, n, seed);
+    const auto hit = accel.closest_hit(r);
+    if (!hit) continue;
+    const SurfacePoint sp = surface_point(scene.triangles[hit->triangle], hit->b0, hit->b1, hit->b2);
+    hits.push_back({sp, dot(sp.n, r.d) < 0.0f ? sp.n : -sp.n});
+  }
+  return hits;
+}
+
+Ray cosine_ray(const SurfaceSample& s, Rng& rng) {
+  const Vec3f local = sample_cosine_hemisphere(rng.uniform(), rng.uniform());
+  const Vec3f w = Frame(s.n).to_world(local);
+  return Ray{offset_ray_origin(s.sp, w), w};
+}
+
+}  // namespace
+
+const char* ray_class_name(RayClass c) {
+  switch (c) {
+    case RayClass::camera: return "camera";
+    case RayClass::bounce: return "bounce";
+    case RayClass::shadow: return "shadow";
+    case RayClass::lines: return "lines";
+  }
+  return "?";
+}
+
+RayClass parse_ray_class(const std::string& name) {
+  for (RayClass c : {RayClass::camera, RayClass::bounce, RayClass::shadow, RayClass::lines})
+    if (name == ray_class_name(c)) return c;
+  throw std::invalid_argument("unknown ray class '" + name + "' (expected camera, bounce, shadow, lines)");
+}
+
+RaySet make_ray_set(RayClass kind, const Scene& scene, const Accelerator& reference, std::size_t n,
+                    std::uint64_t seed) {
+  RaySet set;
+  set.kind = kind;
+  set.rays.reserve(n);
+  Rng rng(seed, 0x6265'6e63'68ull, std::uint64_t(kind));  // one stream per class ("bench")
+
+  if (kind == RayClass::camera) {
+    const Camera camera(scene.camera, scene.width, scene.height);
+    for (std::size_t i = 0; i < n; ++i) set.rays.push_back(camera_ray(scene, camera, i, n, seed));
+    set.note = "stratified over the " + std::to_string(scene.width) + "x" + std::to_string(scene.height) + " film";
+  } else if (kind == RayClass::bounce || kind == RayClass::shadow) {
+    const auto hits = camera_hits(scene, reference, n, seed);
+    const Lights lights(scene);
+    const bool emitters = !lights.empty() && lights.environment_index() > 0;
+    set.occlusion = kind == RayClass::shadow;
+    for (std::size_t i = 0; !hits.empty() && i < n; ++i) {
+      const SurfaceSample& s = hits[i % hits.size()];
+      if (kind == RayClass::bounce || !emitters) {
+        Ray r = cosine_ray(s, rng);
+        set.rays.push_back(r);
+        continue;
+      }
+      // To a point on an emitter chosen by power (the environment excluded).
+      std::size_t light = lights.choose(rng.uniform_double());
+      while (light == lights.environment_index()) light = lights.choose(rng.uniform_double());
+      const Triangle& tri = scene.triangles[lights.triangle(light)];
+      float b0, b1, b2;
+      sample_triangle(rng.uniform(), rng.uniform(), b0, b1, b2);
+      const SurfacePoint lp = surface_point(tri, b0, b1, b2);
+      const Vec3f w = normalize(lp.p - s.sp.p);
+      const Vec3f from = offset_ray_origin(s.sp, w), to = offset_ray_origin(lp, -w);
+      const float len = length(to - from);
+      if (!(len > 0.0f)) continue;
+      set.rays.push_back(Ray{from, (to - from) / len, 0.0f, len * (1.0f - kShadowEpsilon)});
+    }
+    set.note = hits.empty() ? "the camera sees nothing: no rays"
+               : kind == RayClass::bounce ? "cosine-weighted from camera hits"
+               : emitters ? "from camera hits to points on emitters"
+                          : "no emitters: cosine-weighted from camera hits, infinite tmax";
+  } else {
+    const Bounds3f b = scene.bounds();
+    const Vec3d center(b.center());
+    const double radius = std::max(0.5 * length(Vec3d(b.diagonal())), 1e-30);
+    for (std::size_t tries = 0; set.rays.size() < n && tries < 100 * n; ++tries) {
+      // Isotropic direction, then a point uniform on the disk it projects the
+      // bounding sphere to: uniformly distributed lines.
+      const float z = 1.0f - 2.0f * rng.uniform(), phi = 2.0f * std::numbers::pi_v<float> * rng.uniform();
+      const float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
+      const Vec3f d{s * std::cos(phi), s * std::sin(phi), z};
+      const Frame frame(d);
+      const float r = float(radius) * std::sqrt(rng.uniform()), a = 2.0f * std::numbers::pi_v<float> * rng.uniform();
+      const Vec3d p = center + Vec3d(frame.s) * double(r * std::cos(a)) + Vec3d(frame.t) * double(r * std::sin(a));
+      const Vec3f o = Vec3f(p - Vec3d(d) * radius);
+      // Keep only lines that cross the box.
+      double t0 = 0, t1 = INFINITY;
+      for (int k = 0; k < 3; ++k) {
+        if (d[k] == 0.0f) {
+          if (o[k] < b.lo[k] || o[k] > b.hi[k]) t0 = INFINITY;
+          continue;
+        }
+        double tn = (double(b.lo[k]) - o[k]) / d[k], tf = (double(b.hi[k]) - o[k]) / d[k];
+        if (tn > tf) std::swap(tn, tf);
+        t0 = std::max(t0, tn);
+        t1 = std::min(t1, tf);
+      }
+      if (t0 <= t1) set.rays.push_back(Ray{o, d});
+    }
+    set.note = "isotropic uniform lines through the scene box";
+  }
+  return set;
+}
+
+}  // namespace kappa

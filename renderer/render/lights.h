@@ -1,0 +1,43 @@
+// The lights of a scene: its emissive triangles and the constant environment,
+// chosen for next-event estimation with probability proportional to power.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "accel/ray.h"
+#include "renderer/scene/scene.h"
+
+namespace kappa {
+
+class Lights {
+ public:
+  explicit Lights(const Scene& scene);
+
+  bool empty() const { return m_cdf.empty(); }
+
+  /// Picks a light from u in [0, 1): the index of an emissive triangle in
+  /// `triangle(i)`, or `environment_index()` for the sky.
+  std::size_t choose(double u) const;
+  std::size_t environment_index() const { return m_triangles.size(); }
+  TriangleId triangle(std::size_t light) const { return m_triangles[light]; }
+  float area(std::size_t light) const { return m_areas[light]; }
+
+  /// Probability that choose() picks a light: per light index, and looked up by
+  /// triangle for emitters hit by BSDF-sampled rays (0 if not emissive).
+  float pmf(std::size_t light) const { return m_pmf[light]; }
+  float pmf_of_triangle(TriangleId id) const { return m_pmf_of_triangle.empty() ? 0.0f : m_pmf_of_triangle[id]; }
+  float pmf_environment() const { return m_pmf_environment; }
+  float area_of_triangle(TriangleId id) const { return m_area_of_triangle.empty() ? 0.0f : m_area_of_triangle[id]; }
+
+ private:
+  std::vector<TriangleId> m_triangles;  ///< emissive triangles
+  std::vector<float> m_areas;           ///< their areas
+  std::vector<float> m_pmf;             ///< per light, the environment last
+  std::vector<double> m_cdf;            ///< running sum of m_pmf, ends at 1
+  std::vector<float> m_pmf_of_triangle;   ///< per scene triangle
+  std::vector<float> m_area_of_triangle;  ///< per scene triangle (0 if not emissive)
+  float m_pmf_environment = 0;
+};
+
+}  // namespace kappa

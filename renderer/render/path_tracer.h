@@ -1,0 +1,147 @@
+// The path tracer's per-sample work: unidirectional path tracing with
+// next-event estimation, MIS and Russian roulette, asking every visibility
+// query through a Queries object (queries.h) chosen once per frame.
+#pragma once
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include "renderer/render/integrator.h"
+#include "renderer/render/interaction.h"
+#include "renderer/render/lights.h"
+#include "renderer/render/sampling.h"
+
+namespace kappa {
+
+/// What a camera sample records besides radiance.
+struct FirstHit {
+  Vec3f albedo{0, 0, 0};
+  Vec3f normal{0, 0, 0};
+  float depth = INFINITY;
+};
+
+class PathTracer {
+ public:
+  PathTracer(const Scene& scene, const RenderSettings& settings)
+      : m_scene(scene), m_lights(scene), m_settings(settings) {}
+
+  /// Radiance arriving along `ray`, asking every visibility query through
+  /// `q` (PlainQueries or CountingQueries, chosen once per frame).
+  template <class Queries>
+  Vec3f radiance(Ray ray, Rng& rng, FirstHit& first, Queries& q) const {
+    Vec3f L{0, 0, 0};
+    Vec3f beta{1, 1, 1};
+    float prev_bsdf_pdf = 0;  // solid-angle pdf of the direction that led here
+    Vec3f prev_normal;        // oriented normal at the previous vertex
+
+    for (int depth = 0;; ++depth) {
+      const std::optional<Hit> hit = q.closest(ray, depth);
+      if (!hit) {
+        if (depth == 0) {
+          L += beta * m_scene.environment;
+        } else {
+          const float light_pdf =
+              m_lights.pmf_environment() * cosine_hemisphere_pdf(dot(prev_normal, ray.d));
+          L += beta * m_scene.environment * power_heuristic(prev_bsdf_pdf, light_pdf);
+        }
+        break;
+      }
+      const Triangle& tri = m_scene.triangles[hit->triangle];
+      const Material& mat = m_scene.materials[m_scene.material_of[hit->triangle]];
+      const SurfacePoint sp = surface_point(tri, hit->b0, hit->b1, hit->b2);
+      const Vec3f wo = -ray.d;
+      const float cos_o = dot(sp.n, wo);
+      const Vec3f n = cos_o >= 0.0f ? sp.n : -sp.n;  // reflect on the side the ray came from
+
+      if (depth == 0) first = FirstHit{mat.albedo, n, hit->t};
+
+      // Emission: one-sided, towards the geometric normal.
+      if (mat.emissive() && cos_o > 0.0f) {
+        if (depth == 0) {
+          L += beta * mat.emission;
+        } else {
+          // An emitter too dim to be a light (pmf 0) is reached only by BSDF
+          // sampling, which then carries its whole weight.
+          const float pmf = m_lights.pmf_of_triangle(hit->triangle);
+          const float light_pdf =
+              pmf > 0.0f ? pmf * (hit->t * hit->t) / (cos_o * m_lights.area_of_triangle(hit->triangle)) : 0.0f;
+          L += beta * mat.emission * power_heuristic(prev_bsdf_pdf, light_pdf);
+        }
+      }
+      if (depth >= m_settings.max_depth) break;
+      if (mat.albedo == Vec3f{0, 0, 0}) break;  // black: nothing more to gather
+
+      const Vec3f f = mat.albedo * std::numbers::inv_pi_v<float>;  // Lambertian BSDF
+      if (!m_lights.empty()) L += beta * direct_light(sp, n, f, rng, q);
+
+      // Continue the path by sampling the BSDF (cosine-weighted hemisphere).
+      const Vec3f local = sample_cosine_hemisphere(rng.uniform(), rng.uniform());
+      const float pdf = cosine_hemisphere_pdf(local.z);
+      if (!(pdf > 0.0f)) break;
+      const Vec3f wi = Frame(n).to_world(local);
+      beta *= mat.albedo;  // f * cos / pdf
+      prev_bsdf_pdf = pdf;
+      prev_normal = n;
+      ray = Ray{offset_ray_origin(sp, wi), wi};
+
+      if (m_settings.rr_depth >= 0 && depth + 1 >= m_settings.rr_depth) {
+        const float q = std::max(0.0f, 1.0f - max_component(beta));
+        if (rng.uniform() < q) break;
+        beta /= 1.0f - q;
+      }
+    }
+    return L;
+  }
+
+ private:
+  /// One light sample with its MIS weight against BSDF sampling.
+  template <class Queries>
+  Vec3f direct_light(const SurfacePoint& sp, const Vec3f& n, const Vec3f& f, Rng& rng, Queries& q) const {
+    const std::size_t light = m_lights.choose(rng.uniform_double());
+    const float u1 = rng.uniform(), u2 = rng.uniform();
+    if (light == m_lights.environment_index()) {
+      // Cosine-weighted about the oriented normal: directions below the
+      // surface would contribute nothing.
+      const Vec3f local = sample_cosine_hemisphere(u1, u2);
+      const float dir_pdf = cosine_hemisphere_pdf(local.z);
+      if (!(dir_pdf > 0.0f)) return {};
+      const Vec3f wi = Frame(n).to_world(local);
+      const float light_pdf = m_lights.pmf_environment() * dir_pdf;
+      if (q.shadow(Ray{offset_ray_origin(sp, wi), wi})) return {};
+      const float weight = power_heuristic(light_pdf, dir_pdf);
+      return f * m_scene.environment * (local.z * weight / light_pdf);
+    }
+
+    const TriangleId id = m_lights.triangle(light);
+    const Triangle& tri = m_scene.triangles[id];
+    float b0, b1, b2;
+    sample_triangle(u1, u2, b0, b1, b2);
+    const SurfacePoint lp = surface_point(tri, b0, b1, b2);
+    const Vec3f to_light = lp.p - sp.p;
+    const float dist2 = dot(to_light, to_light);
+    if (!(dist2 > 0.0f)) return {};
+    const Vec3f wi = to_light / std::sqrt(dist2);
+    const float cos_s = dot(n, wi);
+    const float cos_l = -dot(lp.n, wi);
+    if (cos_s <= 0.0f || cos_l <= 0.0f) return {};
+    const float light_pdf = m_lights.pmf(light) * dist2 / (cos_l * m_lights.area(light));
+    if (!(light_pdf > 0.0f) || !std::isfinite(light_pdf)) return {};
+
+    const Vec3f from = offset_ray_origin(sp, wi);
+    const Vec3f to = offset_ray_origin(lp, -wi);
+    const Vec3f d = to - from;
+    const float len = length(d);
+    if (!(len > 0.0f)) return {};
+    if (q.shadow(Ray{from, d / len, 0.0f, len * (1.0f - kShadowEpsilon)})) return {};
+    const Vec3f Le = m_scene.materials[m_scene.material_of[id]].emission;
+    const float weight = power_heuristic(light_pdf, cosine_hemisphere_pdf(cos_s));
+    return f * Le * (cos_s * weight / light_pdf);
+  }
+
+  const Scene& m_scene;
+  Lights m_lights;
+  const RenderSettings& m_settings;
+};
+
+}  // namespace kappa

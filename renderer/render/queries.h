@@ -1,0 +1,202 @@
+// How the path tracer asks its visibility queries, chosen once per frame:
+// PlainQueries calls the accelerator (a virtual call, nothing counted but
+// the ray total); CountingQueries walks the grid with per-class counters.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include "accel/accel.h"
+#include "accel/grid_traverse.h"
+#include "renderer/render/sampling.h"
+#include "stats/cost_model.h"
+#include "stats/render_counters.h"
+
+namespace kappa {
+
+/// Cumulative work of one thread's queries: what the cost AOVs difference.
+struct QueryWork {
+  std::uint64_t cells = 0, tests = 0;
+};
+
+struct PlainQueries {
+  const Accelerator& accel;
+  std::uint64_t rays = 0;
+
+  QueryWork work() const { return {}; }
+  void begin_path(std::uint64_t /*pixel*/, std::uint64_t /*sample*/) {}
+
+  std::optional<Hit> closest(const Ray& r, int /*depth*/) {
+    ++rays;
+    return accel.closest_hit(r);
+  }
+  bool shadow(const Ray& r) {
+    ++rays;
+    return accel.any_hit(r);
+  }
+};
+
+/// Class times without a clock read per query: every 64th query of a class
+/// (by its index in the class, the class's ray count before it) is timed and
+/// counts 64 times. The clock's own cost, measured once, is
+/// taken off each timed query (it would otherwise be counted 64 times).
+class SampledClock {
+ public:
+  explicit SampledClock(RenderCounters& counters) : m_counters(counters) {}
+
+  template <typename F>
+  void timed(RenderClass k, std::uint64_t index, F&& query) {
+    if ((index & 63) != 0) {
+      query();
+      return;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    query();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    m_counters.sampled_seconds[k] += 64.0 * std::max(0.0, s - m_clock_overhead_s);
+  }
+
+ private:
+  /// Median of many back-to-back clock reads: what timing an empty query costs.
+  static double clock_overhead_seconds() {
+    static const double overhead = [] {
+      std::array<double, 1001> d;
+      for (double& x : d) {
+        const auto a = std::chrono::steady_clock::now();
+        x = std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
+      }
+      std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+      return d[d.size() / 2];
+    }();
+    return overhead;
+  }
+
+  RenderCounters& m_counters;
+  double m_clock_overhead_s = clock_overhead_seconds();
+};
+
+/// Statistics on with an accelerator other than the grid: per class what
+/// applies to any accelerator, the rays, their hits and their sampled time.
+class ClassQueries {
+ public:
+  ClassQueries(const Accelerator& accel, RenderCounters& counters) : m_accel(accel), m_counters(counters) {}
+
+  std::uint64_t rays = 0;
+
+  QueryWork work() const { return {}; }
+  void begin_path(std::uint64_t /*pixel*/, std::uint64_t /*sample*/) {}
+
+  std::optional<Hit> closest(const Ray& r, int depth) {
+    return counted<std::optional<Hit>>(class_of_depth(depth), [&] { return m_accel.closest_hit(r); });
+  }
+  bool shadow(const Ray& r) {
+    return counted<bool>(kShadow, [&] { return m_accel.any_hit(r); });
+  }
+
+ private:
+  template <typename Result, typename F>
+  Result counted(RenderClass k, F&& query) {
+    ++rays;
+    ClassTotals& t = m_counters.classes[k].totals;
+    Result result{};
+    m_clock.timed(k, t.rays++, [&] { result = query(); });
+    t.hits += bool(result);
+    return result;
+  }
+
+  const Accelerator& m_accel;
+  RenderCounters& m_counters;
+  SampledClock m_clock{m_counters};
+};
+
+/// Which paths count per cell: every path, or 1 in `every` drawn by a hash
+/// of (seed, pixel, sample), so the choice is the same whatever the thread
+/// count. Per-class totals always count every ray.
+struct CellSampling {
+  std::uint64_t every = 1;
+  std::uint64_t seed = 0;
+
+  bool counts(std::uint64_t pixel, std::uint64_t sample) const {
+    if (every <= 1) return true;
+    return mix64(mix64(seed ^ 0x6A09E667F3BCC909ull) ^ mix64(pixel) ^ (sample * 0x9E3779B97F4A7C15ull)) % every == 0;
+  }
+};
+
+/// Counts every query in its class's totals and, for the paths `sampling`
+/// picks, per cell: into each thread's own arrays (SampledMode own, for
+/// counting every path) or into arrays the threads share (shared, for
+/// sampled paths). The mode is chosen once per frame.
+template <PerCell SampledMode>
+class CountingQueries {
+  static_assert(SampledMode != PerCell::no);
+
+ public:
+  /// Per-cell counts are kept if `counters` has per-cell arrays, for the
+  /// paths `sampling` picks.
+  CountingQueries(const UniformGrid& grid, RenderCounters& counters, CellSampling sampling = {})
+      : m_grid(grid), m_counters(counters), m_sampling(sampling), m_per_cell(counters.classes[0].per_cell()) {}
+
+  /// Chooses, once per path, whether its rays are counted per cell.
+  void begin_path(std::uint64_t pixel, std::uint64_t sample) {
+    m_path_per_cell = m_per_cell && m_sampling.counts(pixel, sample);
+  }
+
+  std::uint64_t rays = 0;
+
+  QueryWork work() const {
+    QueryWork w;
+    for (const CellCounters& c : m_counters.classes) {
+      w.cells += c.totals.cells;
+      w.tests += c.totals.tests;
+    }
+    return w;
+  }
+
+  std::optional<Hit> closest(const Ray& r, int depth) {
+    return counted<std::optional<Hit>>(class_of_depth(depth), [&](auto& tally) { return m_grid.closest_hit(r, tally); });
+  }
+
+  bool shadow(const Ray& r) {
+    return counted<bool>(kShadow, [&](auto& tally) { return m_grid.any_hit(r, tally); });
+  }
+
+ private:
+  /// One query of class k: walked with the tally this path was given (per
+  /// cell or totals only), timed by sampling, counted in the class totals.
+  template <typename Result, typename Walk>
+  Result counted(RenderClass k, Walk&& walk) {
+    ++rays;
+    CellCounters& c = m_counters.classes[k];
+    Result result{};
+    m_clock.timed(k, c.totals.rays++, [&] {
+      if (m_path_per_cell) {
+        result = walk_per_cell<Result>(c, walk);
+      } else {
+        CellCounters::TotalsTally tally(c);
+        result = walk(tally);
+      }
+    });
+    c.totals.hits += bool(result);
+    return result;
+  }
+
+  /// The rare per-cell walk (sampled paths), kept out of line so that the
+  /// common totals-only walk gets the compiler's inlining.
+  template <typename Result, typename Walk>
+  [[gnu::noinline]] static Result walk_per_cell(CellCounters& c, Walk& walk) {
+    CellCounters::BasicTally<SampledMode> tally(c);
+    return walk(tally);
+  }
+
+  const UniformGrid& m_grid;
+  RenderCounters& m_counters;
+  SampledClock m_clock{m_counters};
+  CellSampling m_sampling;
+  bool m_per_cell;
+  bool m_path_per_cell = false;
+};
+
+}  // namespace kappa

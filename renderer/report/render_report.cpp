@@ -1,0 +1,147 @@
+#include "renderer/report/render_report.h"
+
+#include <cstdio>
+
+#include "accel/grid.h"
+#include "stats/cast.h"
+#include "stats/report.h"
+#include "renderer/version.h"
+
+namespace kappa {
+namespace {
+
+/// One class's summary: p_i from the per-cell counts (of the sampled paths,
+/// if per-cell counting was sampled), exact totals otherwise.
+ClassSummary summary(const ClassTotals& totals, std::uint64_t per_cell_rays, std::span<const std::uint64_t> visits,
+                     const std::vector<std::uint32_t>& theta, double seconds) {
+  ClassSummary m;
+  m.totals = totals;
+  m.per_cell_rays = per_cell_rays;
+  const std::uint64_t rays = totals.rays;
+  // Without per-cell counts (empty visits): Theta's moments and what the
+  // totals give; what needs p_i is undefined.
+  m.collusion = collusion_sampled(visits, theta, visits.empty() ? 0 : per_cell_rays, rays, totals.cells, totals.refs);
+  m.cells_per_ray_predicted = rays > 0 ? totals.predicted_cells() / double(rays) : 0.0;
+  m.time_s = seconds;
+  return m;
+}
+
+std::string cell(const nlohmann::ordered_json& v, const char* fmt) {
+  if (!v.is_number()) return "-";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, fmt, v.get<double>());
+  return buf;
+}
+
+}  // namespace
+
+nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& accel, const FrameFacts& frame,
+                                     const RenderResult& result, const std::optional<Calibration>& calibration) {
+  nlohmann::ordered_json j;
+  j["schema_version"] = kReportSchemaVersion;
+  j["kappa_version"] = version_string();
+  j["scene"] = scene.source.string();
+  j["accel"] = std::string(accel.name());
+  j["render"] = {{"width", frame.width},
+                 {"height", frame.height},
+                 {"spp", frame.spp},
+                 {"threads", frame.threads},
+                 {"seed", frame.seed},
+                 {"time_s", result.seconds},
+                 {"rays", result.rays},
+                 {"mrays_per_s", result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0}};
+  const auto* grid = dynamic_cast<const UniformGrid*>(&accel);
+  if (grid) j["grid"] = grid_section(*grid, scene.triangles);
+  nlohmann::ordered_json rays = nlohmann::ordered_json::object();
+  if (grid && result.counters) {
+    const RenderCounters& rc = *result.counters;
+    const std::vector<std::uint32_t> theta = occupancies(*grid);
+    const bool per_cell = rc.classes[0].per_cell();
+    std::vector<std::uint64_t> visits, all_visits(per_cell ? theta.size() : 0, 0);
+    ClassTotals all;
+    std::uint64_t all_per_cell_rays = 0;
+    double all_seconds = 0;
+    for (std::size_t k = 0; k < kRenderClasses; ++k) {
+      const CellCounters& c = rc.classes[k];
+      if (per_cell) {
+        visits = c.visits();
+        for (std::size_t i = 0; i < visits.size(); ++i) all_visits[i] += visits[i];
+      }
+      rays[kRenderClassNames[k]] = ray_class_section(
+          summary(c.totals, c.per_cell_queries(), visits, theta, rc.sampled_seconds[k]),
+          std::nullopt);
+      all += c.totals;
+      all_per_cell_rays += c.per_cell_queries();
+      all_seconds += rc.sampled_seconds[k];
+    }
+    rays["all"] = ray_class_section(summary(all, all_per_cell_rays, all_visits, theta, all_seconds),
+                                    std::nullopt);
+    j["stats"] = {{"per_cell", per_cell}, {"cell_sample", result.cell_sample}};
+    if (!result.stats_note.empty()) j["stats_note"] = result.stats_note;
+  } else if (result.counters) {
+    // Another accelerator: per class what applies to any.
+    const RenderCounters& rc = *result.counters;
+    ClassTotals all;
+    double all_seconds = 0;
+    const auto section = [](const ClassTotals& t, double seconds) {
+      return nlohmann::ordered_json{
+          {"count", t.rays},
+          {"hit_fraction", t.rays > 0 ? nlohmann::ordered_json(double(t.hits) / double(t.rays)) : nlohmann::ordered_json()},
+          {"time_s", seconds}};
+    };
+    for (std::size_t k = 0; k < kRenderClasses; ++k) {
+      rays[kRenderClassNames[k]] = section(rc.classes[k].totals, rc.sampled_seconds[k]);
+      all += rc.classes[k].totals;
+      all_seconds += rc.sampled_seconds[k];
+    }
+    rays["all"] = section(all, all_seconds);
+    j["stats"] = {{"per_cell", false}};
+  }
+  j["rays"] = rays;
+  j["cost"] = nullptr;  // without a calibration (kappa calibrate) there is no prediction
+  if (calibration && grid && result.counters) {
+    // Thread-seconds of traversal: eq 10 per class from its own counts, and
+    // the sampled clock of the same queries (which includes the counting).
+    double predicted = 0, measured = 0;
+    for (std::size_t k = 0; k < kRenderClasses; ++k) {
+      const ClassTotals& t = result.counters->classes[k].totals;
+      if (t.rays == 0) continue;
+      predicted += double(t.rays) * calibration->seconds_per_ray(double(t.cells) / double(t.rays),
+                                                                 double(t.refs) / double(t.rays));
+      measured += result.counters->sampled_seconds[k];
+    }
+    j["cost"] = {{"T0_ns", calibration->T0_ns},
+                 {"Ts_ns", calibration->Ts_ns},
+                 {"Th_ns", calibration->Th_ns},
+                 {"predicted_s", predicted},
+                 {"measured_s", measured},
+                 {"relative_error", measured > 0 ? nlohmann::ordered_json(predicted / measured - 1.0) : nlohmann::ordered_json()}};
+  }
+  return j;
+}
+
+void print_report_table(const nlohmann::ordered_json& report) {
+  if (!report.contains("rays") || report["rays"].empty()) return;
+  if (report["cost"].is_object())
+    std::printf("cost (eq 10, thread-seconds of traversal): predicted %.3f s, measured %.3f s, error %s (T0 %.1f ns, Ts %.1f ns, Th %.1f ns)\n",
+                report["cost"]["predicted_s"].get<double>(), report["cost"]["measured_s"].get<double>(),
+                cell(report["cost"]["relative_error"], "%+.3f").c_str(), report["cost"]["T0_ns"].get<double>(),
+                report["cost"]["Ts_ns"].get<double>(), report["cost"]["Th_ns"].get<double>());
+  if (!report.contains("grid")) {  // another accelerator: what applies to any
+    std::printf("%-9s %11s %8s %10s\n", "rays", "count", "hits", "time_s");
+    for (const auto& [name, c] : report["rays"].items())
+      std::printf("%-9s %11s %8s %10s\n", name.c_str(), c["count"].dump().c_str(), cell(c["hit_fraction"], "%.3f").c_str(),
+                  cell(c["time_s"], "%.3f").c_str());
+    return;
+  }
+  std::printf("%-9s %11s %8s %9s %8s %8s %8s %7s %7s\n", "rays", "count", "cells", "predicted", "tests", "refs",
+              "p_tot", "r", "kappa");
+  for (const auto& [name, c] : report["rays"].items()) {
+    std::printf("%-9s %11s %8s %9s %8s %8s %8s %7s %7s\n", name.c_str(), c["count"].dump().c_str(),
+                cell(c["cells_per_ray"], "%.2f").c_str(), cell(c["cells_per_ray_predicted"], "%.2f").c_str(),
+                cell(c["tests_per_ray"], "%.2f").c_str(), cell(c["refs_per_ray"], "%.2f").c_str(),
+                cell(c["p_tot"], "%.2f").c_str(), cell(c["r"], "%.3f").c_str(), cell(c["kappa"], "%.3f").c_str());
+  }
+}
+
+}  // namespace kappa

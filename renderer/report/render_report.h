@@ -1,0 +1,29 @@
+// The per-frame report of `kappa render` (keys in stats/README.md) and its
+// compact human table.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "accel/accel.h"
+#include "renderer/render/integrator.h"
+#include "renderer/scene/scene.h"
+#include "stats/calibration.h"
+
+namespace kappa {
+
+struct FrameFacts {
+  int width = 0, height = 0, spp = 0, threads = 0;
+  std::uint64_t seed = 0;
+};
+
+/// The report; `cost` is filled when a calibration is given and counters ran:
+/// eq 10's predicted traversal time (thread-seconds) beside the measured one.
+nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& accel, const FrameFacts& frame,
+                                     const RenderResult& result, const std::optional<Calibration>& calibration = {});
+
+/// One line per ray class: count, cells per ray (measured and predicted),
+/// tests and references per ray, p_tot, r, kappa.
+void print_report_table(const nlohmann::ordered_json& report);
+
+}  // namespace kappa

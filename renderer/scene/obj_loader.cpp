@@ -1,0 +1,152 @@
+#include "renderer/scene/obj_loader.h"
+
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "renderer/scene/obj_scan.h"
+
+namespace kappa {
+namespace {
+
+/// A polygon is convex when every turn has the same sign about its normal.
+bool is_convex(const ObjPolygon& poly, const std::vector<Vec3d>& positions) {
+  const std::size_t n = poly.vertices.size();
+  Vec3d normal;  // Newell's method: robust for non-planar and concave polygons
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3d& a = positions[poly.vertices[i]];
+    const Vec3d& b = positions[poly.vertices[(i + 1) % n]];
+    normal += Vec3d{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
+  }
+  bool positive = false, negative = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3d& a = positions[poly.vertices[i]];
+    const Vec3d& b = positions[poly.vertices[(i + 1) % n]];
+    const Vec3d& c = positions[poly.vertices[(i + 2) % n]];
+    const double turn = dot(cross(b - a, c - b), normal);
+    positive |= turn > 0;
+    negative |= turn < 0;
+  }
+  return !(positive && negative);
+}
+
+Vec3f checked_colour(const tinyobj::real_t c[3], const std::string& material, const char* key, float hi,
+                     const std::filesystem::path& obj, Warnings& warnings) {
+  Vec3f v{float(c[0]), float(c[1]), float(c[2])};
+  Vec3f fixed = v;
+  for (float* x : {&fixed.x, &fixed.y, &fixed.z}) {
+    if (!std::isfinite(*x) || *x < 0.0f) *x = 0.0f;
+    if (*x > hi) *x = hi;
+  }
+  if (!(fixed == v)) {
+    std::ostringstream msg;
+    msg << "material '" << material << "': " << key << " " << v.x << " " << v.y << " " << v.z
+        << " is outside its valid range, clamped to " << fixed.x << " " << fixed.y << " " << fixed.z;
+    warnings.push_back(located(obj, 0, msg.str()));
+  }
+  return fixed;
+}
+
+std::uint32_t default_material(Scene& scene) {
+  static const char* kName = "(default grey)";
+  for (std::size_t i = 0; i < scene.materials.size(); ++i)
+    if (scene.materials[i].name == kName) return std::uint32_t(i);
+  scene.materials.push_back(Material{kName, {0.5f, 0.5f, 0.5f}, {0, 0, 0}});
+  return std::uint32_t(scene.materials.size() - 1);
+}
+
+}  // namespace
+
+void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings) {
+  const ObjScan scan = scan_obj(obj, warnings);
+  const std::filesystem::path dir = obj.parent_path();
+
+  for (const auto& lib : scan.mtllibs) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(dir / lib, ec))
+      warnings.push_back(located(obj, 0, "material library '" + lib + "' not found; its materials use the default grey"));
+  }
+  for (const ObjPolygon& poly : scan.polygons) {
+    std::vector<std::size_t> distinct = poly.vertices;
+    std::sort(distinct.begin(), distinct.end());
+    distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+    if (distinct.size() < poly.vertices.size()) {
+      warnings.push_back(located(obj, poly.line,
+                                 "polygon of " + std::to_string(poly.vertices.size()) + " vertex references has only " +
+                                     std::to_string(distinct.size()) + " distinct vertices"));
+    }
+    if (!is_convex(poly, scan.positions))
+      warnings.push_back(located(obj, poly.line,
+                                 "concave polygon with " + std::to_string(poly.vertices.size()) +
+                                     " vertices: its triangulation may not follow the outline"));
+  }
+
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string tiny_warn, tiny_err;
+  std::istringstream text(scan.text);
+  tinyobj::MaterialFileReader mtl_reader(dir.empty() ? std::string("./") : dir.string() + "/");
+  // Problems tinyobjloader warns about were already reported by the scan, in
+  // Kappa's words and with line numbers, so its own warning text is not repeated.
+  if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &tiny_warn, &tiny_err, &text, &mtl_reader, true, false)) {
+    std::string first = tiny_err.substr(0, tiny_err.find('\n'));
+    fail(obj, 0, "tinyobjloader: " + (first.empty() ? std::string("cannot parse") : first));
+  }
+
+  // Materials: referenced by index, offset by what earlier meshes added.
+  const auto base = static_cast<std::uint32_t>(scene.materials.size());
+  std::set<std::string> defined;
+  for (const tinyobj::material_t& m : materials) {
+    Material mat;
+    mat.name = m.name;
+    mat.albedo = checked_colour(m.diffuse, m.name, "Kd", 1.0f, obj, warnings);
+    mat.emission = checked_colour(m.emission, m.name, "Ke", 1e30f, obj, warnings);
+    scene.materials.push_back(mat);
+    defined.insert(m.name);
+  }
+  for (const auto& use : scan.material_uses) {
+    if (!defined.count(use.name))
+      warnings.push_back(located(obj, use.line, "material '" + use.name + "' is not defined; using the default grey"));
+  }
+
+  const std::size_t vertex_count = attrib.vertices.size() / 3;
+  auto position = [&](int index) {
+    return Vec3f{attrib.vertices[3 * std::size_t(index)], attrib.vertices[3 * std::size_t(index) + 1],
+                 attrib.vertices[3 * std::size_t(index) + 2]};
+  };
+  std::size_t zero_area = 0, before = scene.triangles.size();
+  for (const tinyobj::shape_t& shape : shapes) {
+    const auto& idx = shape.mesh.indices;
+    std::size_t offset = 0;
+    for (std::size_t face = 0; face < shape.mesh.num_face_vertices.size(); ++face) {
+      const std::size_t fv = shape.mesh.num_face_vertices[face];
+      const std::size_t f = offset;
+      offset += fv;
+      if (fv != 3 || offset > idx.size()) continue;  // triangulation leaves only triangles
+      const int a = idx[f].vertex_index, b = idx[f + 1].vertex_index, c = idx[f + 2].vertex_index;
+      if (a < 0 || b < 0 || c < 0 || std::size_t(std::max({a, b, c})) >= vertex_count)
+        fail(obj, 0, "face index out of range after triangulation");  // the scan makes this unreachable
+      const Triangle tri{position(a), position(b), position(c)};
+      if (!(double_area(tri) > 0.0)) {
+        ++zero_area;
+        continue;
+      }
+      const int mat = face < shape.mesh.material_ids.size() ? shape.mesh.material_ids[face] : -1;
+      scene.triangles.push_back(tri);
+      scene.material_of.push_back(mat >= 0 && std::size_t(mat) < materials.size() ? base + std::uint32_t(mat)
+                                                                                   : default_material(scene));
+    }
+  }
+  if (zero_area > 0)
+    warnings.push_back(located(obj, 0, std::to_string(zero_area) + " zero-area triangles dropped"));
+  if (scene.triangles.size() == before)
+    warnings.push_back(located(obj, 0,
+                               "no triangles (" + std::to_string(scan.positions.size()) + " vertices, " +
+                                   std::to_string(scan.face_count) + " faces)"));
+}
+
+}  // namespace kappa

@@ -1,0 +1,23 @@
+// OBJ + MTL loading through tinyobjloader, behind a line-numbered pre-scan that
+// refuses (InputError naming file:line) or repairs with a warning what
+// tinyobjloader would otherwise accept silently. The policy per case is the
+// table in README.md ("Bad input").
+#pragma once
+
+#include <filesystem>
+
+#include "renderer/io/error.h"
+#include "renderer/scene/scene.h"
+
+namespace kappa {
+
+/// Largest coordinate magnitude accepted. The watertight test forms products
+/// of three coordinates (T ~ coord^3), which overflow float near 7e12: such
+/// files are refused rather than half-rendered.
+inline constexpr double kMaxCoordinate = 1e12;
+
+/// Appends the triangles and materials of `obj` to `scene`. Zero-area triangles
+/// are dropped (with a warning). Throws InputError on refused input.
+void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings);
+
+}  // namespace kappa

@@ -1,0 +1,279 @@
+#include "renderer/scene/obj_scan.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "renderer/scene/obj_loader.h"
+
+namespace kappa {
+namespace {
+
+/// Strict number: the whole token must be a decimal floating-point literal
+/// (an optional leading '+' is allowed, as OBJ writers emit it).
+enum class NumberStatus { ok, invalid, out_of_range };
+
+NumberStatus parse_number(std::string_view tok, double& out) {
+  const char* b = tok.data();
+  const char* e = b + tok.size();
+  if (b != e && *b == '+') {
+    ++b;
+    if (b == e || *b == '+' || *b == '-') return NumberStatus::invalid;
+  }
+  const auto [p, ec] = std::from_chars(b, e, out, std::chars_format::general);
+  if (p != e || b == e) return NumberStatus::invalid;
+  if (ec == std::errc::result_out_of_range) return NumberStatus::out_of_range;
+  if (ec != std::errc()) return NumberStatus::invalid;
+  return NumberStatus::ok;
+}
+
+bool parse_integer(std::string_view tok, long long& out) {
+  const char* b = tok.data();
+  const char* e = b + tok.size();
+  const auto [p, ec] = std::from_chars(b, e, out);
+  return ec == std::errc() && p == e && b != e;
+}
+
+std::string excerpt(std::string_view s) {
+  constexpr std::size_t kMax = 40;
+  std::string q(s.substr(0, kMax));
+  if (s.size() > kMax) q += "...";
+  return "'" + q + "'";
+}
+
+/// Groups repeated warnings of one kind into a single line.
+struct WarningTally {
+  std::size_t count = 0;
+  std::size_t first_line = 0;
+  std::string first_text;
+
+  void add(std::size_t line, std::string_view text) {
+    if (count++ == 0) {
+      first_line = line;
+      first_text = std::string(text);
+    }
+  }
+  void flush(const std::filesystem::path& file, const std::string& what, Warnings& out) const {
+    if (count == 0) return;
+    std::string msg = std::to_string(count) + " " + what + " (first at line " +
+                      std::to_string(first_line) + ": " + excerpt(first_text) + ")";
+    out.push_back(located(file, 0, msg));
+  }
+};
+
+class Scanner {
+ public:
+  Scanner(const std::filesystem::path& file, Warnings& warnings) : m_file(file), m_warnings(warnings) {}
+
+  ObjScan run(const std::string& bytes) {
+    check_encoding(bytes);
+    m_total_vertices = count_vertex_statements(bytes);
+    std::size_t line_no = 0;
+    // A UTF-8 byte-order mark is not part of the first statement.
+    std::size_t start = bytes.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
+    while (start < bytes.size()) {
+      std::size_t end = bytes.find('\n', start);
+      if (end == std::string::npos) end = bytes.size();
+      std::string_view line(bytes.data() + start, end - start);
+      if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+      ++line_no;
+      if (scan_line(line, line_no)) {
+        m_scan.text.append(line);
+      }
+      m_scan.text.push_back('\n');  // keep line numbers aligned, add a final newline
+      start = end + 1;
+    }
+    m_short_faces.flush(m_file, "faces with fewer than 3 vertices skipped", m_warnings);
+    m_unknown.flush(m_file, "unknown statements ignored", m_warnings);
+    m_non_faces.flush(m_file, "line/point/curve elements ignored (only faces are rendered)", m_warnings);
+    return std::move(m_scan);
+  }
+
+ private:
+  void check_encoding(const std::string& bytes) {
+    if (bytes.size() >= 2) {
+      const auto b0 = static_cast<unsigned char>(bytes[0]);
+      const auto b1 = static_cast<unsigned char>(bytes[1]);
+      if ((b0 == 0xFE && b1 == 0xFF) || (b0 == 0xFF && b1 == 0xFE))
+        fail(m_file, 1, "UTF-16 encoding is not supported (save the OBJ as UTF-8 or ASCII)");
+    }
+    std::size_t line = 1;
+    for (char ch : bytes) {
+      const auto c = static_cast<unsigned char>(ch);
+      if (c == '\n') ++line;
+      const bool control = (c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\v' && c != '\f') ||
+                           c == 0x7F;
+      if (control) {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "0x%02X", c);
+        fail(m_file, line, std::string("binary data (byte ") + hex + "): not a text OBJ file");
+      }
+    }
+  }
+
+  static long long count_vertex_statements(const std::string& bytes) {
+    long long n = 0;
+    std::size_t start = 0;
+    while (start < bytes.size()) {
+      std::size_t i = start;
+      while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t')) ++i;
+      if (start == 0 && bytes.rfind("\xEF\xBB\xBF", 0) == 0) i += 3;
+      if (i + 1 < bytes.size() && bytes[i] == 'v' && (bytes[i + 1] == ' ' || bytes[i + 1] == '\t')) ++n;
+      const std::size_t end = bytes.find('\n', start);
+      if (end == std::string::npos) break;
+      start = end + 1;
+    }
+    return n;
+  }
+
+  /// Returns true to keep the line for tinyobjloader, false to blank it.
+  bool scan_line(std::string_view line, std::size_t line_no) {
+    const std::vector<std::string_view> tok = split_ws(line);
+    if (tok.empty() || tok[0].front() == '#') return true;
+    const std::string_view key = tok[0];
+    if (key == "v") return scan_vertex(tok, line_no);
+    if (key == "vt" || key == "vn") return scan_attribute(tok, line_no);
+    if (key == "f") return scan_face(tok, line_no);
+    if (key == "mtllib") {
+      const auto rest = line.substr(line.find("mtllib") + 6);
+      for (auto name : split_ws(rest)) m_scan.mtllibs.emplace_back(name);
+      if (split_ws(rest).empty()) warn(line_no, "'mtllib' without a file name ignored");
+      return true;
+    }
+    if (key == "usemtl") {
+      // The name is the whole rest of the line: material names may hold spaces.
+      std::string_view rest = line.substr(line.find("usemtl") + 6);
+      while (!rest.empty() && (rest.front() == ' ' || rest.front() == '\t')) rest.remove_prefix(1);
+      while (!rest.empty() && (rest.back() == ' ' || rest.back() == '\t')) rest.remove_suffix(1);
+      m_scan.material_uses.push_back({line_no, std::string(rest)});
+      return true;
+    }
+    if (key == "g" || key == "o" || key == "s" || key == "vp") return true;
+    if (key == "l" || key == "p" || key == "curv" || key == "curv2" || key == "surf") {
+      m_non_faces.add(line_no, line);
+      return false;
+    }
+    m_unknown.add(line_no, line);
+    return false;
+  }
+
+  double coordinate(std::string_view tok, std::size_t line_no, const char* what) {
+    double v = 0;
+    switch (parse_number(tok, v)) {
+      case NumberStatus::invalid:
+        fail(m_file, line_no, std::string(what) + " " + excerpt(tok) + " is not a number");
+      case NumberStatus::out_of_range:
+        fail(m_file, line_no, std::string(what) + " " + excerpt(tok) + " is out of the range of a double");
+      case NumberStatus::ok:
+        break;
+    }
+    return v;
+  }
+
+  bool scan_vertex(const std::vector<std::string_view>& tok, std::size_t line_no) {
+    if (tok.size() < 4)
+      fail(m_file, line_no, "vertex needs 3 coordinates, found " + std::to_string(tok.size() - 1));
+    Vec3d p;
+    for (std::size_t i = 1; i < tok.size(); ++i) {
+      const double v = coordinate(tok[i], line_no, "vertex coordinate");
+      if (i > 3) continue;  // optional w or vertex colour: syntax checked only
+      if (!std::isfinite(v)) fail(m_file, line_no, "vertex coordinate " + excerpt(tok[i]) + " is not finite");
+      if (std::abs(v) > kMaxCoordinate) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.3g", kMaxCoordinate);
+        fail(m_file, line_no,
+             "vertex coordinate " + excerpt(tok[i]) + " exceeds Kappa's limit of " + buf +
+                 " (single-precision intersection would overflow); rescale the model");
+      }
+      (i == 1 ? p.x : i == 2 ? p.y : p.z) = v;
+    }
+    m_scan.positions.push_back(p);
+    return true;
+  }
+
+  bool scan_attribute(const std::vector<std::string_view>& tok, std::size_t line_no) {
+    if (tok.size() < 2) fail(m_file, line_no, std::string(tok[0]) + " without values");
+    for (std::size_t i = 1; i < tok.size(); ++i) coordinate(tok[i], line_no, "value");
+    return true;
+  }
+
+  bool scan_face(const std::vector<std::string_view>& tok, std::size_t line_no) {
+    ObjPolygon poly;
+    poly.line = line_no;
+    for (std::size_t i = 1; i < tok.size(); ++i) {
+      const std::string_view ref = tok[i];
+      const std::size_t slash = ref.find('/');
+      const std::string_view pos = ref.substr(0, slash);
+      long long index = 0;
+      if (!parse_integer(pos, index))
+        fail(m_file, line_no, "face index " + excerpt(pos) + " is not an integer");
+      if (slash != std::string_view::npos) {
+        // Texture and normal indices are not used, but must be well-formed.
+        std::string_view rest = ref.substr(slash + 1);
+        for (std::size_t k = 0; k < 2 && !rest.empty(); ++k) {
+          const std::size_t s = rest.find('/');
+          const std::string_view part = rest.substr(0, s);
+          long long ignored = 0;
+          if (!part.empty() && !parse_integer(part, ignored))
+            fail(m_file, line_no, "face index " + excerpt(ref) + " is not of the form v, v/vt, v//vn or v/vt/vn");
+          if (s == std::string_view::npos) break;
+          rest = rest.substr(s + 1);
+        }
+      }
+      const auto defined = static_cast<long long>(m_scan.positions.size());
+      if (index == 0) fail(m_file, line_no, "face index 0 is invalid (OBJ indices start at 1)");
+      if (index < 0) {
+        if (-index > defined)
+          fail(m_file, line_no,
+               "relative face index " + std::to_string(index) + " points before the first vertex (" +
+                   std::to_string(defined) + " defined so far)");
+        index = defined + index + 1;
+      } else if (index > m_total_vertices) {
+        // Positive indices may name vertices defined later in the file, so
+        // they are checked against the file's total.
+        fail(m_file, line_no,
+             "face index " + std::to_string(index) + " is out of range (the file has " +
+                 std::to_string(m_total_vertices) + " vertices)");
+      }
+      poly.vertices.push_back(static_cast<std::size_t>(index - 1));
+    }
+    if (poly.vertices.size() < 3) {
+      m_short_faces.add(line_no, tok.size() == 1 ? std::string_view("f") : tok[0]);
+      return false;
+    }
+    ++m_scan.face_count;
+    if (poly.vertices.size() > 3) m_scan.polygons.push_back(std::move(poly));
+    return true;
+  }
+
+  void warn(std::size_t line, const std::string& msg) { m_warnings.push_back(located(m_file, line, msg)); }
+
+  const std::filesystem::path& m_file;
+  Warnings& m_warnings;
+  ObjScan m_scan;
+  long long m_total_vertices = 0;  ///< `v` statements in the whole file
+  WarningTally m_short_faces, m_unknown, m_non_faces;
+};
+
+}  // namespace
+
+std::vector<std::string_view> split_ws(std::string_view s) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && (s[i] == ' ' || s[i] == '\t' || s[i] == '\v' || s[i] == '\f')) ++i;
+    const std::size_t b = i;
+    while (i < s.size() && !(s[i] == ' ' || s[i] == '\t' || s[i] == '\v' || s[i] == '\f')) ++i;
+    if (i > b) out.push_back(s.substr(b, i - b));
+  }
+  return out;
+}
+
+ObjScan scan_obj(const std::filesystem::path& file, Warnings& warnings) {
+  const std::string bytes = read_input_file(file, "an OBJ file");
+  return Scanner(file, warnings).run(bytes);
+}
+
+}  // namespace kappa

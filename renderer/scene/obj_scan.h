@@ -1,0 +1,40 @@
+// The pre-scan of an OBJ file: validates every statement with its line number
+// and produces the sanitized text handed to tinyobjloader.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "accel/vec3.h"
+#include "renderer/io/error.h"
+
+namespace kappa {
+
+struct ObjPolygon {
+  std::size_t line = 0;
+  std::vector<std::size_t> vertices;  ///< 0-based position indices
+};
+
+struct ObjScan {
+  std::string text;                  ///< sanitized OBJ: skipped statements blanked, lines kept
+  std::vector<Vec3d> positions;      ///< every `v`, validated finite and in range
+  std::size_t face_count = 0;        ///< faces kept (3 or more vertices)
+  std::vector<ObjPolygon> polygons;  ///< faces with more than 3 vertices
+  std::vector<std::string> mtllibs;  ///< `mtllib` file names, in order
+  struct MaterialUse {
+    std::size_t line;
+    std::string name;
+  };
+  std::vector<MaterialUse> material_uses;  ///< every `usemtl`
+};
+
+/// Reads and checks `file`. Throws InputError (file:line) for what Kappa
+/// refuses; appends warnings for what it skips.
+ObjScan scan_obj(const std::filesystem::path& file, Warnings& warnings);
+
+/// Splits s at spaces and tabs (runs count once).
+std::vector<std::string_view> split_ws(std::string_view s);
+
+}  // namespace kappa

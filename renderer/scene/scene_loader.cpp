@@ -1,0 +1,209 @@
+#include "renderer/scene/scene_loader.h"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "renderer/scene/obj_loader.h"
+
+namespace kappa {
+namespace {
+
+using nlohmann::json;
+
+constexpr int kMaxFilmSide = 1 << 15;
+
+/// Line and column (1-based) of a byte offset.
+std::pair<std::size_t, std::size_t> line_column(const std::string& text, std::size_t byte) {
+  std::size_t line = 1, col = 1;
+  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+  }
+  return {line, col};
+}
+
+json parse_json(const std::filesystem::path& file, const std::string& text) {
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos) fail(file, 0, "empty scene file");
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& e) {
+    // e.byte is one past the offending character.
+    const auto [line, col] = line_column(text, e.byte > 0 ? e.byte - 1 : 0);
+    std::string what = e.what();
+    const std::size_t colon = what.find(": ", what.find("column"));
+    if (colon != std::string::npos) what = what.substr(colon + 2);
+    throw InputError(file.string() + ":" + std::to_string(line) + ":" + std::to_string(col) + ": JSON syntax error: " + what);
+  }
+}
+
+class FieldReader {
+ public:
+  explicit FieldReader(const std::filesystem::path& file) : m_file(file) {}
+
+  [[noreturn]] void bad(const std::string& field, const std::string& expected) const {
+    fail(m_file, 0, "field '" + field + "' must be " + expected);
+  }
+
+  Vec3f vec3(const json& j, const std::string& field, bool non_negative = false) const {
+    const char* expected = non_negative ? "an array of 3 finite non-negative numbers" : "an array of 3 finite numbers";
+    if (!j.is_array() || j.size() != 3) bad(field, expected);
+    double v[3];
+    for (int i = 0; i < 3; ++i) {
+      if (!j[i].is_number()) bad(field, expected);
+      v[i] = j[i].get<double>();
+      if (!std::isfinite(v[i]) || std::abs(v[i]) > kMaxCoordinate || (non_negative && v[i] < 0)) bad(field, expected);
+    }
+    return {float(v[0]), float(v[1]), float(v[2])};
+  }
+
+  double number(const json& j, const std::string& field, double lo, double hi, const std::string& expected) const {
+    if (!j.is_number()) bad(field, expected);
+    const double v = j.get<double>();
+    if (!(v > lo && v < hi)) bad(field, expected);
+    return v;
+  }
+
+  int film_side(const json& j, const std::string& field) const {
+    const std::string expected = "a positive integer of at most " + std::to_string(kMaxFilmSide);
+    if (!j.is_number_integer()) bad(field, expected);
+    const auto v = j.get<long long>();
+    if (v < 1 || v > kMaxFilmSide) bad(field, expected);
+    return int(v);
+  }
+
+  void unknown_keys(const json& obj, std::initializer_list<const char*> known, const std::string& prefix,
+                    Warnings& warnings) const {
+    for (const auto& [key, value] : obj.items()) {
+      bool ok = false;
+      for (const char* k : known) ok |= key == k;
+      if (!ok) warnings.push_back(located(m_file, 0, "unknown field '" + prefix + key + "' ignored"));
+    }
+  }
+
+ private:
+  const std::filesystem::path& m_file;
+};
+
+void check_camera(const std::filesystem::path& file, const CameraSpec& c) {
+  const Vec3d forward = Vec3d(c.look_at) - Vec3d(c.eye);
+  if (!(length(forward) > 0)) fail(file, 0, "camera: 'eye' and 'look_at' are the same point");
+  if (!(length(Vec3d(c.up)) > 0)) fail(file, 0, "camera: 'up' is the zero vector");
+  const Vec3d right = cross(normalize(forward), normalize(Vec3d(c.up)));
+  if (!(length(right) > 1e-6)) fail(file, 0, "camera: 'up' is parallel to the viewing direction");
+}
+
+Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings) {
+  const std::string text = read_input_file(file, "a scene file");
+  const json root = parse_json(file, text);
+  const FieldReader field(file);
+  if (!root.is_object()) fail(file, 0, "the scene must be a JSON object");
+  field.unknown_keys(root, {"meshes", "camera", "environment", "film"}, "", warnings);
+
+  Scene scene;
+  scene.source = file;
+  scene.name = scene_name(file);
+
+  if (!root.contains("meshes")) fail(file, 0, "missing field 'meshes' (a list of OBJ files)");
+  const json& meshes = root["meshes"];
+  if (!meshes.is_array() || meshes.empty()) field.bad("meshes", "a non-empty array of OBJ file names");
+  std::vector<std::filesystem::path> mesh_paths;
+  for (const json& m : meshes) {
+    if (!m.is_string() || m.get<std::string>().empty()) field.bad("meshes", "a non-empty array of OBJ file names");
+    mesh_paths.push_back(file.parent_path() / m.get<std::string>());
+  }
+
+  bool has_camera = false;
+  if (root.contains("camera")) {
+    const json& cam = root["camera"];
+    if (!cam.is_object()) field.bad("camera", "an object {eye, look_at, up, vfov_deg}");
+    field.unknown_keys(cam, {"eye", "look_at", "up", "vfov_deg"}, "camera.", warnings);
+    for (const char* k : {"eye", "look_at", "up", "vfov_deg"})
+      if (!cam.contains(k)) fail(file, 0, std::string("missing field 'camera.") + k + "'");
+    scene.camera.eye = field.vec3(cam["eye"], "camera.eye");
+    scene.camera.look_at = field.vec3(cam["look_at"], "camera.look_at");
+    scene.camera.up = field.vec3(cam["up"], "camera.up");
+    check_camera(file, scene.camera);
+    scene.camera.vfov_deg =
+        float(field.number(cam["vfov_deg"], "camera.vfov_deg", 0.0, 180.0, "a number of degrees in (0, 180)"));
+    has_camera = true;
+  }
+  if (root.contains("environment")) scene.environment = field.vec3(root["environment"], "environment", true);
+  if (root.contains("film")) {
+    const json& film = root["film"];
+    if (!film.is_object()) field.bad("film", "an object {width, height}");
+    field.unknown_keys(film, {"width", "height"}, "film.", warnings);
+    if (film.contains("width")) scene.width = field.film_side(film["width"], "film.width");
+    if (film.contains("height")) scene.height = field.film_side(film["height"], "film.height");
+  }
+
+  for (const auto& mesh : mesh_paths) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(mesh, ec)) fail(file, 0, "mesh '" + mesh.string() + "' not found");
+    load_obj(mesh, scene, warnings);
+  }
+  if (!has_camera) {
+    scene.camera = framing_camera(scene.bounds(), 39.3077f, float(scene.width) / float(scene.height));
+    scene.camera_framed = true;
+  }
+  return scene;
+}
+
+Scene load_obj_scene(const std::filesystem::path& file, Warnings& warnings) {
+  Scene scene;
+  scene.source = file;
+  scene.name = scene_name(file);
+  scene.environment = {1, 1, 1};
+  load_obj(file, scene, warnings);
+  if (!scene.triangles.empty()) {
+    scene.camera = framing_camera(scene.bounds(), 39.3077f, float(scene.width) / float(scene.height));
+    scene.camera_framed = true;
+  }
+  return scene;
+}
+
+std::string lower_extension(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+}  // namespace
+
+std::string scene_name(const std::filesystem::path& file) {
+  const std::string stem = file.stem().string();
+  if (stem == "scene") {
+    const std::string dir = std::filesystem::absolute(file).parent_path().filename().string();
+    if (!dir.empty()) return dir;
+  }
+  return stem.empty() ? std::string("scene") : stem;
+}
+
+Scene load_scene(const std::filesystem::path& file, Warnings& warnings) {
+  Warnings pending;  // printed only if the scene loads: a refusal is one line
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) fail(file, 0, "file not found");
+  if (std::filesystem::is_directory(file, ec)) fail(file, 0, "is a directory, not a scene file");
+  const std::string ext = lower_extension(file);
+  Scene scene;
+  if (ext == ".json") {
+    scene = load_json_scene(file, pending);
+  } else if (ext == ".obj") {
+    scene = load_obj_scene(file, pending);
+  } else {
+    fail(file, 0, "unsupported scene format '" + ext + "' (expected .json or .obj)");
+  }
+  if (scene.triangles.empty()) fail(file, 0, "the scene has no triangles: nothing to render");
+  if (scene.triangles.size() >= std::size_t(kNoTriangle))
+    fail(file, 0, "more than 2^32 - 1 triangles; Kappa uses 32-bit triangle ids");
+  warnings.insert(warnings.end(), pending.begin(), pending.end());
+  return scene;
+}
+
+}  // namespace kappa

@@ -1,0 +1,19 @@
+// Loads a scene from a scene.json (meshes, camera, environment, film) or from a
+// bare OBJ (camera framing its bounding box, environment 1).
+#pragma once
+
+#include <filesystem>
+
+#include "renderer/io/error.h"
+#include "renderer/scene/scene.h"
+
+namespace kappa {
+
+/// Throws InputError naming the file (and line) for refused input; warnings
+/// are appended to `warnings` only when loading succeeds in the end.
+Scene load_scene(const std::filesystem::path& file, Warnings& warnings);
+
+/// The default output name: the folder name for "scene.json", else the file stem.
+std::string scene_name(const std::filesystem::path& file);
+
+}  // namespace kappa

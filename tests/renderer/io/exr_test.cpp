@@ -1,0 +1,94 @@
+// EXR output read back with OpenImageIO: pixels, channels and metadata.
+#include "renderer/io/exr_output.h"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include "renderer/io/atomic_file.h"
+#include "test_util.h"
+
+namespace kappa {
+namespace {
+
+Film sample_film() {
+  Film film(5, 3, AovSelection{true, true, true});
+  for (std::size_t i = 0; i < film.rgb.size(); ++i) film.rgb[i] = float(i) * 0.25f + 1e-7f;
+  for (std::size_t i = 0; i < film.albedo.size(); ++i) film.albedo[i] = float(i) / 64.0f;
+  for (std::size_t i = 0; i < film.normal.size(); ++i) film.normal[i] = -float(i) / 32.0f;
+  for (std::size_t i = 0; i < film.depth.size(); ++i) film.depth[i] = i == 4 ? INFINITY : float(i) * 3.5f;
+  return film;
+}
+
+TEST(Exr, RoundTripKeepsPixelsChannelsAndMetadata) {
+  test::TempDir dir;
+  const Film film = sample_film();
+  const auto path = dir / "round.exr";
+  write_exr(path, film, {{"kappa:scene", std::string("x/scene.json")}, {"kappa:spp", 17}, {"kappa:render_time_s", 1.5f}});
+
+  auto in = OIIO::ImageInput::open(path.string());
+  ASSERT_TRUE(in) << OIIO::geterror();
+  const OIIO::ImageSpec& spec = in->spec();
+  EXPECT_EQ(spec.width, 5);
+  EXPECT_EQ(spec.height, 3);
+  const std::vector<std::string> expected = {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B",
+                                             "normal.X", "normal.Y", "normal.Z", "depth.Z"};
+  ASSERT_EQ(spec.nchannels, int(expected.size()));
+  // EXR stores channels sorted by name; look each one up.
+  std::vector<float> pixels(std::size_t(spec.width * spec.height * spec.nchannels));
+  ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
+  auto channel = [&](const std::string& name) {
+    for (int c = 0; c < spec.nchannels; ++c)
+      if (spec.channelnames[std::size_t(c)] == name) return c;
+    ADD_FAILURE() << "missing channel " << name;
+    return 0;
+  };
+  const std::size_t nc = std::size_t(spec.nchannels);
+  for (std::size_t i = 0; i < film.pixels(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const std::size_t k = 3 * i + std::size_t(c);
+      EXPECT_EQ(pixels[i * nc + std::size_t(channel(expected[std::size_t(c)]))], film.rgb[k]);
+      EXPECT_EQ(pixels[i * nc + std::size_t(channel(expected[3 + std::size_t(c)]))], film.albedo[k]);
+      EXPECT_EQ(pixels[i * nc + std::size_t(channel(expected[6 + std::size_t(c)]))], film.normal[k]);
+    }
+    EXPECT_EQ(pixels[i * nc + std::size_t(channel("depth.Z"))], film.depth[i]);
+  }
+  EXPECT_EQ(spec.get_string_attribute("kappa:scene"), "x/scene.json");
+  EXPECT_EQ(spec.get_int_attribute("kappa:spp"), 17);
+  EXPECT_FLOAT_EQ(spec.get_float_attribute("kappa:render_time_s"), 1.5f);
+  in->close();
+}
+
+TEST(Exr, AtomicOutputLeavesNothingBehindWithoutCommit) {
+  test::TempDir dir;
+  const auto target = dir / "out.exr";
+  test::write_file(target, "previous contents");
+  {
+    AtomicOutput output(target);
+    write_exr(output.temp_path(), sample_film(), {});
+    // No commit: as if the render failed after writing.
+  }
+  EXPECT_EQ(test::read_file(target), "previous contents");
+  std::size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++entries;
+  EXPECT_EQ(entries, 1u);
+}
+
+TEST(Exr, AtomicOutputCommitReplacesTheTarget) {
+  test::TempDir dir;
+  const auto target = dir / "out.exr";
+  test::write_file(target, "previous contents");
+  {
+    AtomicOutput output(target);
+    write_exr(output.temp_path(), sample_film(), {});
+    output.commit();
+  }
+  auto in = OIIO::ImageInput::open(target.string());
+  ASSERT_TRUE(in);
+  EXPECT_EQ(in->spec().width, 5);
+  std::size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++entries;
+  EXPECT_EQ(entries, 1u);
+}
+
+}  // namespace
+}  // namespace kappa

@@ -1,0 +1,253 @@
+// Statistics during a render: free of side effects on the image, independent
+// of the thread count, and complete in the report.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "accel/grid.h"
+#include "renderer/render/render_helpers.h"
+#include "renderer/report/render_report.h"
+#include "renderer/scene/scene_loader.h"
+#include "test_util.h"
+
+namespace kappa {
+namespace {
+
+Scene small_cornell() {
+  Warnings w;
+  Scene s = load_scene(test::assets_dir() / "cornell-box" / "scene.json", w);
+  s.width = s.height = 32;
+  return s;
+}
+
+RenderResult render_with(const Scene& scene, const Accelerator& accel, bool stats, int threads, Film& film,
+                         std::uint64_t max_bytes = std::uint64_t(1) << 32, std::uint64_t cell_sample = 1,
+                         int spp = 4) {
+  RenderSettings settings;
+  settings.spp = spp;
+  settings.cell_sample = cell_sample;
+  settings.stats = stats;
+  settings.threads = threads;
+  settings.stats_max_bytes = max_bytes;
+  return render(scene, accel, settings, film);
+}
+
+/// Every number anywhere in `j` is finite (a NaN or infinity left in the
+/// report object would be written as null or break readers).
+void expect_finite_numbers(const nlohmann::ordered_json& j, const std::string& path = "report") {
+  if (j.is_object()) {
+    for (const auto& [key, value] : j.items()) expect_finite_numbers(value, path + "." + key);
+  } else if (j.is_array()) {
+    for (std::size_t i = 0; i < j.size(); ++i) expect_finite_numbers(j[i], path + "[" + std::to_string(i) + "]");
+  } else if (j.is_number_float()) {
+    EXPECT_TRUE(std::isfinite(j.get<double>())) << path;
+  }
+}
+
+TEST(RenderStats, CountingDoesNotChangeThePixels) {
+  const Scene scene = small_cornell();
+  const auto grid = make_accelerator("grid", scene.triangles);
+  Film off(scene.width, scene.height, {}), on(scene.width, scene.height, {});
+  const RenderResult a = render_with(scene, *grid, false, 0, off);
+  const RenderResult b = render_with(scene, *grid, true, 0, on);
+  EXPECT_EQ(std::memcmp(off.rgb.data(), on.rgb.data(), off.rgb.size() * sizeof(float)), 0);
+  EXPECT_EQ(a.rays, b.rays);
+  EXPECT_FALSE(a.counters);
+  ASSERT_TRUE(b.counters);
+  std::uint64_t counted = 0;
+  for (const auto& c : b.counters->classes) counted += c.totals.rays;
+  EXPECT_EQ(counted, b.rays);  // every query is in exactly one class
+}
+
+TEST(RenderStats, CountersDoNotDependOnTheThreadCount) {
+  const Scene scene = small_cornell();
+  const auto grid = make_accelerator("grid", scene.triangles);
+  Film f1(scene.width, scene.height, {}), f2(scene.width, scene.height, {});
+  const RenderResult one = render_with(scene, *grid, true, 1, f1);
+  const RenderResult two = render_with(scene, *grid, true, 2, f2);
+  for (std::size_t k = 0; k < kRenderClasses; ++k) {
+    const CellCounters &a = one.counters->classes[k], &b = two.counters->classes[k];
+    EXPECT_EQ(a.visits(), b.visits()) << kRenderClassNames[k];
+    EXPECT_EQ(a.tests_in(), b.tests_in()) << kRenderClassNames[k];
+    EXPECT_EQ(a.hits_in(), b.hits_in()) << kRenderClassNames[k];
+    EXPECT_EQ(a.totals.rays, b.totals.rays) << kRenderClassNames[k];
+    EXPECT_EQ(a.totals.cells, b.totals.cells) << kRenderClassNames[k];
+    EXPECT_EQ(a.totals.refs, b.totals.refs) << kRenderClassNames[k];
+    EXPECT_EQ(a.totals.hits, b.totals.hits) << kRenderClassNames[k];
+    EXPECT_EQ(a.per_cell_queries(), b.per_cell_queries()) << kRenderClassNames[k];
+    EXPECT_EQ(a.totals.tests, b.totals.tests) << kRenderClassNames[k];
+    EXPECT_EQ(a.totals.mailbox_skips, b.totals.mailbox_skips) << kRenderClassNames[k];
+    EXPECT_EQ(a.totals.predicted_fixed, b.totals.predicted_fixed) << kRenderClassNames[k];
+  }
+}
+
+TEST(RenderStats, ReportHasEveryClassAndNoNaN) {
+  const Scene scene = small_cornell();
+  const auto grid = make_accelerator("grid", scene.triangles);
+  Film film(scene.width, scene.height, {});
+  const RenderResult result = render_with(scene, *grid, true, 0, film);
+  const auto report = render_report(scene, *grid, FrameFacts{32, 32, 4, 2, 0}, result);
+  for (const char* key : {"width", "height", "spp", "threads", "seed", "time_s", "rays", "mrays_per_s"})
+    EXPECT_TRUE(report["render"].contains(key)) << key;
+  for (const char* cls : {"camera", "shadow", "bounce1", "bounce2", "bounce3+", "all"}) {
+    ASSERT_TRUE(report["rays"].contains(cls)) << cls;
+    for (const auto& [key, value] : report["rays"][cls].items())
+      EXPECT_TRUE(value.is_null() || (value.is_number() && std::isfinite(value.get<double>()))) << cls << "." << key;
+  }
+  EXPECT_EQ(report["rays"]["all"]["count"].get<std::uint64_t>(), result.rays);
+  expect_finite_numbers(report);
+}
+
+// Direct lighting only (--max-depth 1): the deeper bounce classes have no
+// rays, and their per-ray quantities are null, not NaN.
+TEST(RenderStats, ClassesWithoutRaysReportNullNotNaN) {
+  const Scene scene = small_cornell();
+  const auto grid = make_accelerator("grid", scene.triangles);
+  Film film(scene.width, scene.height, {});
+  RenderSettings settings;
+  settings.spp = 2;
+  settings.max_depth = 1;
+  settings.stats = true;
+  const RenderResult result = render(scene, *grid, settings, film);
+  const auto report = render_report(scene, *grid, FrameFacts{32, 32, 2, 0, 0}, result);
+  for (const char* cls : {"bounce2", "bounce3+"}) {
+    SCOPED_TRACE(cls);
+    const auto& c = report["rays"][cls];
+    EXPECT_EQ(c["count"].get<std::uint64_t>(), 0u);
+    for (const char* key : {"cells_per_ray", "tests_per_ray", "refs_per_ray", "hit_fraction", "p_tot", "p_avg",
+                            "sigma_p", "r", "kappa", "kappa_eq25"})
+      EXPECT_TRUE(c[key].is_null()) << key;
+  }
+  EXPECT_GT(report["rays"]["camera"]["count"].get<std::uint64_t>(), 0u);
+  EXPECT_GT(report["rays"]["shadow"]["count"].get<std::uint64_t>(), 0u);
+  expect_finite_numbers(report);
+}
+
+// A flat scene (one square in the plane z = 0, seen from above under a sky):
+// a one-cell-thick grid, Theta_i equal over the occupied cells.
+TEST(RenderStats, FlatSceneReportsFiniteNumbers) {
+  Scene s;
+  s.materials.push_back(Material{"grey", {0.5f, 0.5f, 0.5f}, {0, 0, 0}});
+  s.triangles.push_back({{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}});
+  s.triangles.push_back({{-1, -1, 0}, {1, 1, 0}, {-1, 1, 0}});
+  s.material_of = {0, 0};
+  s.environment = {1, 1, 1};
+  s.camera = CameraSpec{{0, 0, 3}, {0, 0, 0}, {0, 1, 0}, 60.0f};
+  s.width = s.height = 16;
+  const auto grid = make_accelerator("grid", s.triangles);
+  ASSERT_EQ(dynamic_cast<const UniformGrid&>(*grid).info().resolution.nz, 1);
+  Film film(s.width, s.height, {});
+  RenderSettings settings;
+  settings.spp = 2;
+  settings.stats = true;
+  const RenderResult result = render(s, *grid, settings, film);
+  const auto report = render_report(s, *grid, FrameFacts{16, 16, 2, 0, 0}, result);
+  EXPECT_GT(report["rays"]["camera"]["count"].get<std::uint64_t>(), 0u);
+  EXPECT_TRUE(report["grid"]["theta_avg"].is_number());
+  expect_finite_numbers(report);
+}
+
+TEST(RenderStats, AutoCellSampleFallsWithTheGridSize) {
+  EXPECT_EQ(auto_cell_sample(1000), 1u);
+  EXPECT_EQ(auto_cell_sample(65536), 1u);
+  EXPECT_EQ(auto_cell_sample(65537), 64u);
+  EXPECT_EQ(auto_cell_sample(118 * 1024), 64u);
+  EXPECT_EQ(auto_cell_sample(1 << 20), 128u);
+  EXPECT_EQ(auto_cell_sample(215 * 102 * 97), 256u);  // Sponza at the default density
+  EXPECT_EQ(auto_cell_sample(std::uint64_t(1) << 40), 1024u);
+}
+
+TEST(RenderStats, PerCellCountersOverTheBudgetAreRefusedButTotalsStay) {
+  const Scene scene = small_cornell();
+  const auto grid = make_accelerator("grid", scene.triangles);
+  Film film(scene.width, scene.height, {});
+  const RenderResult result = render_with(scene, *grid, true, 0, film, /*max_bytes=*/1000);
+  ASSERT_TRUE(result.counters);
+  EXPECT_FALSE(result.counters->classes[kCamera].per_cell());
+  EXPECT_GT(result.counters->classes[kCamera].totals.cells, 0u);
+  EXPECT_NE(result.stats_note.find("refused"), std::string::npos);
+  const auto report = render_report(scene, *grid, FrameFacts{32, 32, 4, 2, 0}, result);
+  // kappa (eq 8) and p_tot come from the totals; what needs p_i per cell is null.
+  const auto& camera = report["rays"]["camera"];
+  const ClassTotals& t = result.counters->classes[kCamera].totals;
+  const GridInfo& g = dynamic_cast<const UniformGrid&>(*grid).info();
+  ASSERT_TRUE(camera["kappa"].is_number());
+  EXPECT_DOUBLE_EQ(camera["kappa"].get<double>(),
+                   double(g.resolution.cells()) * double(t.refs) / (double(t.cells) * double(g.theta_tot)));
+  EXPECT_TRUE(camera["p_tot"].is_number());
+  EXPECT_TRUE(camera["sigma_p"].is_null());
+  EXPECT_TRUE(camera["r"].is_null());
+  EXPECT_TRUE(camera["kappa_eq25"].is_null());
+  EXPECT_FALSE(report["stats"]["per_cell"].get<bool>());
+}
+
+// Per-cell counts for 1 path in 8: every total (and so kappa by eq 8) is the
+// same as when every path is counted; sigma_p, r and kappa_eq25 are estimates
+// from about an eighth of the rays, near the full count's values.
+TEST(RenderStats, SampledPerCellCountsKeepExactTotalsAndEstimateTheRest) {
+  Scene scene = small_cornell();
+  scene.width = scene.height = 64;
+  const auto grid = make_accelerator("grid", scene.triangles);
+  Film f1(scene.width, scene.height, {}), f8(scene.width, scene.height, {}), f8_two(scene.width, scene.height, {});
+  const RenderResult full = render_with(scene, *grid, true, 0, f1, std::uint64_t(1) << 32, 1, 16);
+  const RenderResult sampled = render_with(scene, *grid, true, 1, f8, std::uint64_t(1) << 32, 8, 16);
+  const RenderResult sampled_two = render_with(scene, *grid, true, 2, f8_two, std::uint64_t(1) << 32, 8, 16);
+  EXPECT_EQ(sampled.cell_sample, 8u);
+  const FrameFacts facts{64, 64, 16, 2, 0};
+  const auto a = render_report(scene, *grid, facts, full), b = render_report(scene, *grid, facts, sampled);
+  for (std::size_t k = 0; k < kRenderClasses; ++k) {
+    const CellCounters &x = full.counters->classes[k], &y = sampled.counters->classes[k];
+    const char* name = kRenderClassNames[k];
+    EXPECT_EQ(x.totals.rays, y.totals.rays) << name;
+    EXPECT_EQ(x.totals.cells, y.totals.cells) << name;
+    EXPECT_EQ(x.totals.tests, y.totals.tests) << name;
+    EXPECT_EQ(x.totals.refs, y.totals.refs) << name;
+    EXPECT_EQ(x.per_cell_queries(), x.totals.rays) << name;
+    // About 1 ray in 8 counted per cell (paths drawn by a hash: binomial).
+    const double n = double(x.totals.rays), q = 1.0 / 8.0;
+    EXPECT_NEAR(double(y.per_cell_queries()), n * q, 6.0 * std::sqrt(n * q)) << name;
+    // The path choice depends on (seed, pixel, sample) only.
+    EXPECT_EQ(y.visits(), sampled_two.counters->classes[k].visits()) << name;
+    EXPECT_EQ(y.per_cell_queries(), sampled_two.counters->classes[k].per_cell_queries()) << name;
+  }
+  for (const char* cls : {"camera", "shadow", "bounce1", "all"}) {
+    const auto &x = a["rays"][cls], &y = b["rays"][cls];
+    EXPECT_NEAR(x["kappa"].get<double>(), y["kappa"].get<double>(), 1e-12 * x["kappa"].get<double>()) << cls;
+    EXPECT_NEAR(x["p_tot"].get<double>(), y["p_tot"].get<double>(), 1e-12 * x["p_tot"].get<double>()) << cls;
+    EXPECT_NEAR(y["sigma_p"].get<double>(), x["sigma_p"].get<double>(), 0.05 * x["sigma_p"].get<double>()) << cls;
+    EXPECT_NEAR(y["kappa_eq25"].get<double>(), x["kappa_eq25"].get<double>(), 0.05 * x["kappa_eq25"].get<double>())
+        << cls;
+    EXPECT_NEAR(y["r"].get<double>(), x["r"].get<double>(), 0.05) << cls;
+  }
+  EXPECT_EQ(b["stats"]["cell_sample"].get<std::uint64_t>(), 8u);
+}
+
+// Naive (or Embree) with statistics on: per class the rays, hits and time,
+// the same rays and hits as the grid counts; nothing grid-specific.
+TEST(RenderStats, NonGridAcceleratorsReportWhatApplies) {
+  const Scene scene = small_cornell();
+  const auto naive = make_accelerator("naive", scene.triangles);
+  const auto grid = make_accelerator("grid", scene.triangles);
+  Film film(scene.width, scene.height, {}), grid_film(scene.width, scene.height, {});
+  const RenderResult result = render_with(scene, *naive, true, 0, film);
+  const RenderResult on_grid = render_with(scene, *grid, true, 0, grid_film);
+  ASSERT_TRUE(result.counters);
+  const auto report = render_report(scene, *naive, FrameFacts{32, 32, 4, 2, 0}, result);
+  EXPECT_FALSE(report.contains("grid"));
+  std::uint64_t total = 0;
+  for (std::size_t k = 0; k < kRenderClasses; ++k) {
+    const char* name = kRenderClassNames[k];
+    const auto& c = report["rays"][name];
+    EXPECT_EQ(c["count"].get<std::uint64_t>(), on_grid.counters->classes[k].totals.rays) << name;
+    EXPECT_EQ(result.counters->classes[k].totals.hits, on_grid.counters->classes[k].totals.hits) << name;
+    EXPECT_TRUE(c.contains("hit_fraction") && c.contains("time_s")) << name;
+    EXPECT_FALSE(c.contains("kappa") || c.contains("cells_per_ray")) << name;
+    total += c["count"].get<std::uint64_t>();
+  }
+  EXPECT_EQ(total, result.rays);
+  EXPECT_EQ(report["rays"]["all"]["count"].get<std::uint64_t>(), result.rays);
+  expect_finite_numbers(report);
+}
+
+}  // namespace
+}  // namespace kappa

@@ -1,0 +1,129 @@
+// OBJ loading: triangulation, materials, the checks tinyobjloader does not make.
+#include "renderer/scene/obj_loader.h"
+
+#include <gtest/gtest.h>
+
+#include "renderer/io/error.h"
+#include "test_util.h"
+
+namespace kappa {
+namespace {
+
+Scene load(const std::string& obj_text, Warnings& warnings, const std::string& mtl_text = "") {
+  test::TempDir dir;
+  test::write_file(dir / "m.obj", obj_text);
+  if (!mtl_text.empty()) test::write_file(dir / "m.mtl", mtl_text);
+  Scene scene;
+  load_obj(dir / "m.obj", scene, warnings);
+  return scene;
+}
+
+std::string error_of(const std::string& obj_text) {
+  try {
+    Warnings w;
+    load(obj_text, w);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ObjLoader, QuadsAreTriangulatedAndMaterialsRead) {
+  Warnings w;
+  const Scene s = load("mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl lamp\nf 1 2 3 4\n", w,
+                       "newmtl lamp\nKd 0.25 0.5 0.75\nKe 4 5 6\n");
+  EXPECT_TRUE(w.empty());
+  ASSERT_EQ(s.triangles.size(), 2u);
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_EQ(s.materials[0].albedo, (Vec3f{0.25f, 0.5f, 0.75f}));
+  EXPECT_EQ(s.materials[0].emission, (Vec3f{4, 5, 6}));
+  EXPECT_EQ(s.material_of[0], 0u);
+  // Counter-clockwise winding is kept: the normal is +z.
+  const Triangle& t = s.triangles[0];
+  EXPECT_GT(cross(t.v1 - t.v0, t.v2 - t.v0).z, 0.0f);
+}
+
+TEST(ObjLoader, RelativeIndicesAndSlashForms) {
+  Warnings w;
+  const Scene s = load("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nf -3/1/1 -2//1 -1/1\n", w);
+  EXPECT_EQ(s.triangles.size(), 1u);
+}
+
+TEST(ObjLoader, MissingMaterialsFallBackToGreyWithAWarning) {
+  Warnings w;
+  const Scene s = load("mtllib nowhere.mtl\nusemtl ghost\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", w);
+  ASSERT_EQ(s.triangles.size(), 1u);
+  EXPECT_EQ(s.materials[s.material_of[0]].albedo, (Vec3f{0.5f, 0.5f, 0.5f}));
+  EXPECT_EQ(s.materials[s.material_of[0]].emission, (Vec3f{0, 0, 0}));
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_NE(w[0].find("nowhere.mtl"), std::string::npos);
+  EXPECT_NE(w[1].find("ghost"), std::string::npos);
+}
+
+TEST(ObjLoader, OutOfRangeColoursAreClampedWithAWarning) {
+  Warnings w;
+  const Scene s = load("mtllib m.mtl\nusemtl hot\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", w,
+                       "newmtl hot\nKd 1.5 -0.2 0.5\nKe -1 2 3\n");
+  EXPECT_EQ(s.materials[0].albedo, (Vec3f{1.0f, 0.0f, 0.5f}));
+  EXPECT_EQ(s.materials[0].emission, (Vec3f{0, 2, 3}));
+  EXPECT_EQ(w.size(), 2u);
+}
+
+TEST(ObjLoader, ZeroAreaTrianglesAreDroppedAndCounted) {
+  Warnings w;
+  const Scene s = load("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\nf 1 1 3\n", w);
+  EXPECT_EQ(s.triangles.size(), 1u);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("2 zero-area"), std::string::npos);
+}
+
+TEST(ObjLoader, ErrorsNameTheLine) {
+  EXPECT_NE(error_of("v 0 0 0\nv 1 0 0\nv 0 nan 0\n").find("m.obj:3:"), std::string::npos);
+  EXPECT_NE(error_of("v 0 0 0\nv 1 0\n").find("m.obj:2:"), std::string::npos);
+  EXPECT_NE(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 x\n").find("m.obj:5:"), std::string::npos);
+  EXPECT_NE(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n").find("m.obj:4:"), std::string::npos);
+  EXPECT_NE(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n").find("m.obj:4:"), std::string::npos);
+  EXPECT_NE(error_of("v 1e300 0 0\n").find("m.obj:1:"), std::string::npos);
+  EXPECT_NE(error_of("v 1 0 0 \x01\n").find("m.obj:1:"), std::string::npos);
+  EXPECT_NE(error_of("v 3.1+e2 0 0\n").find("m.obj:1:"), std::string::npos);
+}
+
+TEST(ObjLoader, ValidNumberFormatsAreAccepted) {
+  Warnings w;
+  const Scene s = load("v +1 2. -3.0\nv 1e2 2.E1 -3.1e-2\nv .5 0 0\nf 1 2 3\n", w);
+  ASSERT_EQ(s.triangles.size(), 1u);
+  EXPECT_EQ(s.triangles[0].v0, (Vec3f{1, 2, -3}));
+  EXPECT_EQ(s.triangles[0].v1, (Vec3f{100, 20, -0.031f}));
+}
+
+TEST(ObjLoader, ConcavePolygonsWarn) {
+  Warnings w;
+  // An L-shaped hexagon.
+  const Scene s = load("v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nf 1 2 3 4 5 6\n", w);
+  EXPECT_EQ(s.triangles.size(), 4u);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("m.obj:7: concave"), std::string::npos);
+}
+
+TEST(ObjLoader, CrlfAndMissingFinalNewlineLoad) {
+  Warnings w;
+  EXPECT_EQ(load("v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3", w).triangles.size(), 1u);
+  EXPECT_TRUE(w.empty());
+}
+
+}  // namespace
+}  // namespace kappa
+
+namespace kappa {
+namespace {
+
+TEST(ObjLoader, Utf8ByteOrderMarkIsSkipped) {
+  Warnings w;
+  const Scene s = load("\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", w);
+  ASSERT_EQ(s.triangles.size(), 1u);
+  EXPECT_EQ(s.triangles[0].v0, (Vec3f{0, 0, 0}));
+  EXPECT_TRUE(w.empty());
+}
+
+}  // namespace
+}  // namespace kappa
