@@ -32,8 +32,6 @@ class EmbreeAccelerator final : public Accelerator {
   EmbreeAccelerator(const EmbreeAccelerator&) = delete;  // Embree holds `this` in its callbacks
   EmbreeAccelerator& operator=(const EmbreeAccelerator&) = delete;
 
-  using Accelerator::any_hit;  // keep the batch forms visible
-  using Accelerator::closest_hit;
   std::optional<Hit> closest_hit(const Ray& ray) const override;
   bool any_hit(const Ray& ray) const override;
   std::string_view name() const override { return "embree"; }

@@ -87,8 +87,6 @@ class UniformGrid final : public Accelerator {
   /// or 2^32 - 1 cells or references.
   UniformGrid(std::span<const Triangle> triangles, const GridOptions& options);
 
-  using Accelerator::any_hit;
-  using Accelerator::closest_hit;
   std::optional<Hit> closest_hit(const Ray& ray) const override;
   bool any_hit(const Ray& ray) const override;
   std::string_view name() const override { return "grid"; }

@@ -13,8 +13,6 @@ class NaiveAccelerator final : public Accelerator {
  public:
   explicit NaiveAccelerator(std::span<const Triangle> triangles);
 
-  using Accelerator::any_hit;  // keep the batch forms visible
-  using Accelerator::closest_hit;
   std::optional<Hit> closest_hit(const Ray& ray) const override;
   bool any_hit(const Ray& ray) const override;
   std::string_view name() const override { return "naive"; }

@@ -1,3 +1,20 @@
-#include "renderer/cli/cli.h"
+// `kappa`: parse the command line, run the one subcommand it names.
+#include "renderer/cli/command_line.h"
+#include "renderer/commands/bench_command.h"
+#include "renderer/commands/calibrate_command.h"
+#include "renderer/commands/cast_command.h"
+#include "renderer/commands/render_command.h"
 
-int main(int argc, char** argv) { return kappa::run_cli(argc, argv); }
+int main(int argc, char** argv) {
+  kappa::Command command;
+  if (const auto exit_code = kappa::parse_command_line(argc, argv, command)) return *exit_code;
+  return kappa::exit_code_of([&] {
+    struct Run {
+      int operator()(const kappa::RenderOptions& o) const { return kappa::run_render(o); }
+      int operator()(const kappa::CastOptions& o) const { return kappa::run_cast(o); }
+      int operator()(const kappa::BenchOptions& o) const { return kappa::run_bench(o); }
+      int operator()(const kappa::CalibrateOptions& o) const { return kappa::run_calibrate(o); }
+    };
+    return std::visit(Run{}, command);
+  });
+}

@@ -118,6 +118,12 @@ nlohmann::ordered_json to_json(const Calibration& c, std::span<const CostSample>
   return j;
 }
 
+std::filesystem::path default_calibration_path() {
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return (ec ? std::filesystem::path(".") : exe.parent_path()) / "kappa_calibration.json";
+}
+
 std::optional<Calibration> load_calibration(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) return std::nullopt;

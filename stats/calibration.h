@@ -41,6 +41,10 @@ struct Calibration {
 Calibration fit_calibration(std::span<const CostSample> samples);
 
 nlohmann::ordered_json to_json(const Calibration& c, std::span<const CostSample> samples = {});
+/// kappa_calibration.json beside the running executable (build/ for a build
+/// tree): where `kappa calibrate` writes and `kappa render` looks by default.
+std::filesystem::path default_calibration_path();
+
 /// Reads a calibration file; nullopt if it does not exist. Throws
 /// std::invalid_argument naming the file if it is malformed.
 std::optional<Calibration> load_calibration(const std::filesystem::path& file);

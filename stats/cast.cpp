@@ -1,7 +1,6 @@
 #include "cast.h"
 
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -11,6 +10,7 @@
 
 #include "accel/byte_size.h"
 #include "accel/grid_traverse.h"
+#include "accel/thread_limit.h"
 #include "cost_model.h"
 
 namespace kappa {
@@ -55,14 +55,11 @@ void walk_all(const UniformGrid& grid, std::span<const Ray> rays, GridWalk walk,
 
 }  // namespace
 
-CastMeasurement cast_with_counters(const UniformGrid& grid, std::span<const Ray> rays, GridWalk walk, int threads,
+CastMeasurement cast_with_counters(const UniformGrid& grid, std::span<const Ray> rays, GridWalk walk,
                                    std::uint64_t max_bytes) {
-  std::optional<tbb::global_control> limit;
-  if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-
   const auto start = std::chrono::steady_clock::now();
   const GridResolution res = grid.info().resolution;
-  const std::uint64_t workers = std::uint64_t(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+  const std::uint64_t workers = std::uint64_t(active_threads());
   const std::uint64_t need = cast_per_cell_bytes(res.cells(), workers);
   const bool per_cell = need <= max_bytes && grid.info().bytes <= max_bytes - need;
   tbb::enumerable_thread_specific<CellCounters> per_thread([&] { return CellCounters(res, per_cell); });

@@ -31,12 +31,13 @@ inline std::uint64_t cast_per_cell_bytes(std::uint64_t cells, std::uint64_t thre
 }
 
 /// Walks every ray (to its closest hit, to any hit, or along its whole
-/// chord) with thread-local counters merged once at the end; `threads` = 0
-/// uses every core. Totals do not depend on the thread count. When the grid
+/// chord) with thread-local counters merged once at the end, on as many
+/// threads as the caller's ThreadLimit allows (accel/thread_limit.h).
+/// Totals do not depend on the thread count. When the grid
 /// and the per-cell counts (cast_per_cell_bytes) would exceed `max_bytes`,
 /// only totals are counted (stats_note says so): p_tot, refs_per_ray and
 /// kappa (eq 8) stay exact, sigma_p, r and kappa_eq25 are undefined.
-CastMeasurement cast_with_counters(const UniformGrid& grid, std::span<const Ray> rays, GridWalk walk, int threads = 0,
+CastMeasurement cast_with_counters(const UniformGrid& grid, std::span<const Ray> rays, GridWalk walk,
                                    std::uint64_t max_bytes = std::numeric_limits<std::uint64_t>::max());
 
 /// Theta_i of every cell of `grid`.

@@ -11,13 +11,13 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "accel/accel.h"
 #include "accel/embree.h"
+#include "accel/factory.h"
 #include "accel/grid.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/render/bench_rays.h"
-#include "renderer/io/error.h"
 #include "renderer/scene/scene_loader.h"
+#include "renderer/util/error.h"
 
 namespace kappa {
 namespace {
@@ -77,11 +77,6 @@ double median_of(std::vector<double> v) {
 int run_bench(const BenchOptions& options) {
   std::vector<RayClass> classes;
   for (const auto& r : options.rays) classes.push_back(parse_ray_class(r));
-  for (const auto& a : options.accels) {
-    const auto names = accelerator_names();
-    if (std::find(names.begin(), names.end(), a) == names.end())
-      throw InputError("--accel: unknown accelerator '" + a + "'");
-  }
   std::unique_ptr<AtomicOutput> json_out;
   if (!options.json.empty()) json_out = std::make_unique<AtomicOutput>(options.json);
 
@@ -90,12 +85,8 @@ int run_bench(const BenchOptions& options) {
   for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", printable_line(w).c_str());
   const std::size_t N = scene.triangles.size();
 
-  AccelOptions accel_options;
-  accel_options.grid_res = options.grid_res;
-  accel_options.grid_density = options.grid_density;
-
   // Ray sets first, from the grid (any exact accelerator gives the same rays).
-  const auto reference = make_accelerator("grid", scene.triangles, accel_options);
+  const auto reference = make_accelerator("grid", scene.triangles, options.build);
   std::vector<RaySet> sets;
   for (RayClass c : classes) sets.push_back(make_ray_set(c, scene, *reference, options.n, options.seed));
 
@@ -118,7 +109,7 @@ int run_bench(const BenchOptions& options) {
       }
     }
     const auto start = std::chrono::steady_clock::now();
-    Built b{name, make_accelerator(name, scene.triangles, accel_options)};
+    Built b{name, make_accelerator(name, scene.triangles, options.build)};
     b.build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     b.bytes = structure_bytes(*b.accel);
     built.push_back(std::move(b));

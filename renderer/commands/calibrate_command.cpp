@@ -3,8 +3,6 @@
 #include <unistd.h>
 
 #include <tbb/blocked_range.h>
-#include <tbb/global_control.h>
-#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -13,12 +11,14 @@
 #include <cstdio>
 #include <fstream>
 
+#include "accel/factory.h"
 #include "accel/grid.h"
 #include "accel/grid_traverse.h"
+#include "accel/thread_limit.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/render/bench_rays.h"
-#include "renderer/io/error.h"
 #include "renderer/scene/scene_loader.h"
+#include "renderer/util/error.h"
 #include "stats/calibration.h"
 #include "stats/cast.h"
 #include "stats/synthetic_rays.h"
@@ -64,12 +64,6 @@ std::string machine_name() {
 
 }  // namespace
 
-std::filesystem::path default_calibration_path() {
-  std::error_code ec;
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return (ec ? std::filesystem::path(".") : exe.parent_path()) / "kappa_calibration.json";
-}
-
 int run_calibrate(const CalibrateOptions& options) {
   const std::filesystem::path out_path = options.out.empty() ? default_calibration_path() : std::filesystem::path(options.out);
   AtomicOutput out(out_path);
@@ -79,16 +73,16 @@ int run_calibrate(const CalibrateOptions& options) {
     scenes = {(assets / "cornell-box" / "scene.json").string(), (assets / "bunny-lowres" / "scene_lowres.json").string()};
   }
 
-  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  const ThreadLimit thread_limit(options.threads);
+  const int threads = active_threads();
   std::vector<CostSample> samples;
   for (const auto& file : scenes) {
     Warnings warnings;
     const Scene scene = load_scene(file, warnings);
     for (double density : options.densities) {
-      GridOptions grid_options;
-      grid_options.density = density;
-      const UniformGrid grid(scene.triangles, grid_options);
+      AccelOptions build = options.build;
+      build.grid_density = density;
+      const UniformGrid grid(scene.triangles, grid_options(build));
       for (RayClass cls : {RayClass::camera, RayClass::bounce, RayClass::shadow, RayClass::lines}) {
         std::vector<Ray> rays;
         GridWalk walk = GridWalk::closest;
@@ -100,7 +94,7 @@ int run_calibrate(const CalibrateOptions& options) {
           if (set.occlusion) walk = GridWalk::any;
         }
         if (rays.empty()) continue;
-        const CastMeasurement m = cast_with_counters(grid, rays, walk, 1);
+        const CastMeasurement m = cast_with_counters(grid, rays, walk);
         CostSample s;
         s.seconds_per_ray = seconds_per_ray(grid, rays, walk, options.repeat, threads);
         s.cells_per_ray = double(m.counters.totals.cells) / double(rays.size());

@@ -1,7 +1,5 @@
 #include "renderer/commands/cast_command.h"
 
-#include <tbb/global_control.h>
-#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 
 #include <atomic>
@@ -10,17 +8,18 @@
 #include <fstream>
 #include <optional>
 
-#include "accel/accel.h"
+#include "accel/factory.h"
 #include "accel/grid.h"
+#include "accel/thread_limit.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/render/bench_rays.h"
-#include "renderer/io/error.h"
 #include "renderer/scene/scene_loader.h"
+#include "renderer/util/error.h"
+#include "renderer/version.h"
 #include "stats/cast.h"
 #include "stats/cost_model.h"
 #include "stats/report.h"
 #include "stats/synthetic_rays.h"
-#include "renderer/version.h"
 
 namespace kappa {
 namespace {
@@ -53,18 +52,13 @@ void print_table(const std::string& cls, const nlohmann::ordered_json& grid, con
 int run_cast(const CastOptions& options) {
   std::unique_ptr<AtomicOutput> report_out;
   if (!options.report.empty()) report_out = std::make_unique<AtomicOutput>(options.report);
-  std::optional<tbb::global_control> limit;
-  if (options.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(options.threads));
+  const ThreadLimit thread_limit(options.threads);
 
   Warnings warnings;
   const Scene scene = load_scene(options.scene, warnings);
   for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", printable_line(w).c_str());
 
-  AccelOptions accel_options;
-  accel_options.grid_res = options.grid_res;
-  accel_options.grid_density = options.grid_density;
-  accel_options.grid_max_bytes = options.grid_max_bytes;
-  const auto accel = make_accelerator(options.accel, scene.triangles, accel_options);
+  const auto accel = make_accelerator(options.accel, scene.triangles, options.build);
   const auto* grid = dynamic_cast<const UniformGrid*>(accel.get());
 
   // The rays: the paper's synthetic distributions through the grid's box,
@@ -104,13 +98,12 @@ int run_cast(const CastOptions& options) {
   report["accel"] = std::string(accel->name());
   report["render"] = nullptr;  // a cast renders nothing
   report["cast"] = {{"rays", options.rays}, {"n", rays.size()}, {"seed", options.seed},
-                    {"threads", options.threads > 0 ? options.threads : tbb::info::default_concurrency()}};
+                    {"threads", active_threads()}};
   if (options.rays == "segments") report["cast"]["length"] = length;
 
   nlohmann::ordered_json ray_section;
   if (grid) {
-    const std::uint64_t max_bytes = options.grid_max_bytes > 0 ? options.grid_max_bytes : default_grid_max_bytes();
-    const CastMeasurement m = cast_with_counters(*grid, rays, walk, options.threads, max_bytes);
+    const CastMeasurement m = cast_with_counters(*grid, rays, walk, options.build.max_bytes());
     report["stats"] = {{"per_cell", m.counters.per_cell()}};
     if (!m.stats_note.empty()) {
       report["stats_note"] = m.stats_note;

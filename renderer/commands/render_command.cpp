@@ -1,7 +1,5 @@
 #include "renderer/commands/render_command.h"
 
-#include <tbb/global_control.h>
-#include <tbb/info.h>
 #include <unistd.h>
 
 #include <charconv>
@@ -11,19 +9,20 @@
 #include <fstream>
 #include <sstream>
 
-#include "accel/accel.h"
 #include "accel/byte_size.h"
+#include "accel/factory.h"
 #include "accel/grid.h"
+#include "accel/thread_limit.h"
+#include "renderer/cli/progress.h"
 #include "renderer/io/atomic_file.h"
-#include "renderer/io/error.h"
+#include "renderer/io/cell_map.h"
 #include "renderer/io/exr_output.h"
 #include "renderer/render/integrator.h"
-#include "renderer/cli/progress.h"
-#include "renderer/commands/calibrate_command.h"
-#include "renderer/io/cell_map.h"
 #include "renderer/report/render_report.h"
 #include "renderer/scene/scene_loader.h"
+#include "renderer/util/error.h"
 #include "renderer/version.h"
+#include "stats/calibration.h"
 
 namespace kappa {
 namespace {
@@ -58,15 +57,6 @@ std::string grid_resolution_text(const Accelerator& accel) {
 
 }  // namespace
 
-std::string RenderOptions::to_string() const {
-  std::ostringstream s;
-  s << "scene=" << scene << " accel=" << accel << " grid_res=" << grid_res << " grid_density=" << grid_density
-    << " grid_max_bytes=" << grid_max_bytes << " spp=" << spp << " max_depth=" << max_depth
-    << " rr_depth=" << (no_rr ? -1 : rr_depth) << " seed=" << seed << " threads=" << threads << " width=" << width
-    << " height=" << height << " out=" << out << " aov=" << aov;
-  return s.str();
-}
-
 int run_render(const RenderOptions& options) {
   const AovSelection aov = parse_aovs(options.aov);
   if (!options.cell_map.empty() && (options.stats != "on" || options.accel != "grid"))
@@ -92,6 +82,8 @@ int run_render(const RenderOptions& options) {
   if (!options.out.empty() && std::filesystem::path(options.out).extension() != ".exr")
     throw InputError("--out: '" + options.out + "' must end in .exr");
 
+  // --threads limits loading, the accelerator's build and the render alike.
+  const ThreadLimit thread_limit(options.threads);
   Warnings warnings;
   Scene scene = load_scene(options.scene, warnings);
   for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", printable_line(w).c_str());
@@ -117,17 +109,8 @@ int run_render(const RenderOptions& options) {
   if (!calibration && !options.calibration.empty())
     throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
 
-  // --threads limits the accelerator build as well as the render.
-  std::optional<tbb::global_control> thread_limit;
-  if (options.threads > 0)
-    thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(options.threads));
-
   const auto build_start = std::chrono::steady_clock::now();
-  AccelOptions accel_options;
-  accel_options.grid_res = options.grid_res;
-  accel_options.grid_density = options.grid_density;
-  accel_options.grid_max_bytes = options.grid_max_bytes;
-  const std::unique_ptr<Accelerator> accel = make_accelerator(options.accel, scene.triangles, accel_options);
+  const std::unique_ptr<Accelerator> accel = make_accelerator(options.accel, scene.triangles, options.build);
   const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   RenderSettings settings;
@@ -135,12 +118,11 @@ int run_render(const RenderOptions& options) {
   settings.max_depth = options.max_depth;
   settings.rr_depth = options.no_rr ? -1 : options.rr_depth;
   settings.seed = options.seed;
-  settings.threads = options.threads;
   settings.aov = aov;
   settings.stats = options.stats == "on";
-  settings.stats_max_bytes = options.grid_max_bytes > 0 ? options.grid_max_bytes : default_grid_max_bytes();
+  settings.stats_max_bytes = options.build.max_bytes();
   settings.cell_sample = cell_sample;
-  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+  const int threads = active_threads();
 
   Film film(scene.width, scene.height, aov);
   ProgressBar bar(!options.quiet && ::isatty(STDERR_FILENO));

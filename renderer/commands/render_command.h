@@ -1,7 +1,7 @@
 // `kappa render`: load, build the accelerator, render, write the EXR atomically.
 #pragma once
 
-#include "renderer/commands/render_options.h"
+#include "renderer/cli/options.h"
 
 namespace kappa {
 

@@ -11,7 +11,7 @@
 #include <fstream>
 #include <mutex>
 
-#include "renderer/io/error.h"
+#include "renderer/util/error.h"
 
 namespace kappa {
 namespace {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "renderer/io/atomic_file.h"
-#include "renderer/io/error.h"
+#include "renderer/util/error.h"
 
 namespace kappa {
 

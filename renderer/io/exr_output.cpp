@@ -2,7 +2,7 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "renderer/io/error.h"
+#include "renderer/util/error.h"
 
 namespace kappa {
 

@@ -13,7 +13,6 @@ struct AovSelection {
   bool normal = false;  ///< geometric normal of the first hit, facing the camera
   bool depth = false;   ///< mean eye distance of the samples that hit (+inf if none did)
   bool cost = false;    ///< grid cells visited and triangle tests made, summed over the pixel's rays (stats on)
-  bool any() const { return albedo || normal || depth || cost; }
 };
 
 struct Film {

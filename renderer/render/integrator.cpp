@@ -1,9 +1,6 @@
 #include "renderer/render/integrator.h"
 
-#include <tbb/global_control.h>
-
 #include <chrono>
-#include <optional>
 
 #include "renderer/render/queries.h"
 #include "renderer/render/tile_loop.h"
@@ -16,9 +13,6 @@ namespace kappa {
 RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSettings& settings, Film& film,
                     const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
-  std::optional<tbb::global_control> limit;
-  if (settings.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(settings.threads));
-
   RenderResult result;
 #ifndef KAPPA_NO_STATS  // a build without statistics has no trace of them here (render_counting.cpp)
   if (const auto* grid = dynamic_cast<const UniformGrid*>(&accel); settings.stats && grid)

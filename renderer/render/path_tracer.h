@@ -7,10 +7,11 @@
 #include <numbers>
 #include <optional>
 
-#include "renderer/render/integrator.h"
+#include "renderer/render/frame.h"
 #include "renderer/render/interaction.h"
 #include "renderer/render/lights.h"
 #include "renderer/render/sampling.h"
+#include "renderer/scene/scene.h"
 
 namespace kappa {
 

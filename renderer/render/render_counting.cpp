@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "accel/byte_size.h"
+#include "accel/thread_limit.h"
 #include "renderer/render/queries.h"
 #include "renderer/render/tile_loop.h"
 
@@ -20,8 +21,7 @@ RenderResult render_counting(const Scene& scene, const UniformGrid& grid, const 
   // class, and one 64-bit array for the classes together); otherwise only
   // per-class totals are kept.
   const std::uint64_t cells = grid.info().resolution.cells();
-  const std::uint64_t threads =
-      std::uint64_t(settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency());
+  const std::uint64_t threads = std::uint64_t(active_threads());  // the caller's ThreadLimit
   const std::uint64_t every = settings.cell_sample > 0 ? settings.cell_sample : auto_cell_sample(cells);
   // Counting every path writes at every step: each thread gets arrays of its
   // own. Sampled paths write rarely: one set of arrays for all threads.

@@ -3,7 +3,8 @@
 #pragma once
 
 #include "accel/grid.h"
-#include "renderer/render/integrator.h"
+#include "renderer/render/frame.h"
+#include "renderer/scene/scene.h"
 
 namespace kappa {
 

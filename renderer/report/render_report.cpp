@@ -3,9 +3,9 @@
 #include <cstdio>
 
 #include "accel/grid.h"
+#include "renderer/version.h"
 #include "stats/cast.h"
 #include "stats/report.h"
-#include "renderer/version.h"
 
 namespace kappa {
 namespace {

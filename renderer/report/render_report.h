@@ -6,7 +6,7 @@
 #include <string>
 
 #include "accel/accel.h"
-#include "renderer/render/integrator.h"
+#include "renderer/render/frame.h"
 #include "renderer/scene/scene.h"
 #include "stats/calibration.h"
 

@@ -6,15 +6,10 @@
 
 #include <filesystem>
 
-#include "renderer/io/error.h"
 #include "renderer/scene/scene.h"
+#include "renderer/util/error.h"
 
 namespace kappa {
-
-/// Largest coordinate magnitude accepted. The watertight test forms products
-/// of three coordinates (T ~ coord^3), which overflow float near 7e12: such
-/// files are refused rather than half-rendered.
-inline constexpr double kMaxCoordinate = 1e12;
 
 /// Appends the triangles and materials of `obj` to `scene`. Zero-area triangles
 /// are dropped (with a warning). Throws InputError on refused input.

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "renderer/scene/obj_loader.h"
+#include "renderer/scene/obj_limits.h"
 
 namespace kappa {
 namespace {

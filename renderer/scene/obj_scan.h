@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "accel/vec3.h"
-#include "renderer/io/error.h"
+#include "renderer/util/error.h"
 
 namespace kappa {
 

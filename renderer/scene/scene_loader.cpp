@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "renderer/scene/obj_limits.h"
 #include "renderer/scene/obj_loader.h"
 
 namespace kappa {

@@ -4,8 +4,8 @@
 
 #include <filesystem>
 
-#include "renderer/io/error.h"
 #include "renderer/scene/scene.h"
+#include "renderer/util/error.h"
 
 namespace kappa {
 

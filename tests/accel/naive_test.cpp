@@ -6,7 +6,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "accel/accel.h"
+#include "accel/factory.h"
 #include "test_util.h"
 
 namespace kappa {
@@ -52,24 +52,6 @@ TEST(Naive, AnyHitRespectsTmax) {
   const NaiveAccelerator accel(tris);
   EXPECT_TRUE(accel.any_hit(Ray{{0, 0, 0}, {0, 0, 1}, 0.0f, 2.0f}));
   EXPECT_FALSE(accel.any_hit(Ray{{0, 0, 0}, {0, 0, 1}, 0.0f, 1.9f}));
-}
-
-TEST(Naive, BatchFormsMatchSingleQueries) {
-  const auto tris = test::random_soup(200, 3, 0.2f);
-  const NaiveAccelerator accel(tris);
-  const auto rays = random_rays(300, 4);
-  std::vector<Hit> hits(rays.size());
-  std::unique_ptr<bool[]> occluded(new bool[rays.size()]);
-  accel.closest_hit(rays, hits);
-  accel.any_hit(rays, std::span<bool>(occluded.get(), rays.size()));
-  for (std::size_t i = 0; i < rays.size(); ++i) {
-    const auto single = accel.closest_hit(rays[i]);
-    EXPECT_EQ(hits[i].valid(), single.has_value());
-    if (single) {
-      EXPECT_EQ(hits[i].triangle, single->triangle);
-    }
-    EXPECT_EQ(occluded[i], single.has_value());
-  }
 }
 
 TEST(Naive, EmptySceneNeverHits) {

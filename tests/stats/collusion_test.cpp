@@ -3,6 +3,7 @@
 #include "stats/collusion.h"
 
 #include <gtest/gtest.h>
+#include <tbb/info.h>
 
 #include <cstdio>
 #include <numeric>
@@ -11,6 +12,7 @@
 
 #include "accel/grid.h"
 #include "accel/grid_traverse.h"
+#include "accel/thread_limit.h"
 #include "renderer/scene/obj_loader.h"
 #include "stats/cast.h"
 #include "stats/cost_model.h"
@@ -185,8 +187,13 @@ TEST(CastIdentities, CountersDoNotDependOnTheThreadCount) {
   const auto tris = test::random_soup(2000, 8, 0.05f);
   const UniformGrid grid = grid_at(tris, {20, 20, 20});
   const auto lines = uniform_lines(grid.info().lo, grid.info().hi, 20000, 9);
-  const CastMeasurement one = cast_with_counters(grid, lines, GridWalk::closest, 1);
-  const CastMeasurement two = cast_with_counters(grid, lines, GridWalk::closest, 2);
+  const auto cast_on = [&](int threads) {
+    const ThreadLimit limit(threads);
+    EXPECT_EQ(active_threads(), std::min(threads, tbb::info::default_concurrency()));
+    return cast_with_counters(grid, lines, GridWalk::closest);
+  };
+  const CastMeasurement one = cast_on(1);
+  const CastMeasurement two = cast_on(2);
   EXPECT_EQ(one.counters.visits(), two.counters.visits());
   EXPECT_EQ(one.counters.tests_in(), two.counters.tests_in());
   EXPECT_EQ(one.counters.hits_in(), two.counters.hits_in());

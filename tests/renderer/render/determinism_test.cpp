@@ -3,6 +3,7 @@
 
 #include <cstring>
 
+#include "accel/thread_limit.h"
 #include "renderer/render/render_helpers.h"
 #include "renderer/scene/scene_loader.h"
 #include "test_util.h"
@@ -22,11 +23,13 @@ TEST(Determinism, CornellBoxIsBitwiseIdenticalAt1And2And4Threads) {
   settings.spp = 8;
   settings.seed = 7;
   settings.aov = AovSelection{true, true, true};
-  settings.threads = 1;
-  const Film one = test::render_scene(scene, settings);
+  const auto render_on = [&](int threads) {
+    const ThreadLimit limit(threads);
+    return test::render_scene(scene, settings);
+  };
+  const Film one = render_on(1);
   for (int threads : {2, 4}) {
-    settings.threads = threads;
-    const Film many = test::render_scene(scene, settings);
+    const Film many = render_on(threads);
     EXPECT_TRUE(bitwise_equal(one.rgb, many.rgb)) << threads << " threads";
     EXPECT_TRUE(bitwise_equal(one.albedo, many.albedo)) << threads << " threads";
     EXPECT_TRUE(bitwise_equal(one.normal, many.normal)) << threads << " threads";

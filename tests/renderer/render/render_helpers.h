@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "accel/accel.h"
+#include "accel/factory.h"
 #include "renderer/render/film.h"
 #include "renderer/render/integrator.h"
 #include "renderer/scene/scene.h"

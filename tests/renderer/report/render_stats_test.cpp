@@ -4,7 +4,9 @@
 
 #include <cstring>
 
+#include "accel/factory.h"
 #include "accel/grid.h"
+#include "accel/thread_limit.h"
 #include "renderer/render/render_helpers.h"
 #include "renderer/report/render_report.h"
 #include "renderer/scene/scene_loader.h"
@@ -27,8 +29,8 @@ RenderResult render_with(const Scene& scene, const Accelerator& accel, bool stat
   settings.spp = spp;
   settings.cell_sample = cell_sample;
   settings.stats = stats;
-  settings.threads = threads;
   settings.stats_max_bytes = max_bytes;
+  const ThreadLimit limit(threads);
   return render(scene, accel, settings, film);
 }
 

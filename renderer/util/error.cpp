@@ -1,4 +1,4 @@
-#include "renderer/io/error.h"
+#include "renderer/util/error.h"
 
 #include <fstream>
 #include <sstream>

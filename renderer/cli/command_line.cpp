@@ -1,19 +1,14 @@
-#include "renderer/cli/cli.h"
+#include "renderer/cli/command_line.h"
 
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <limits>
 #include <new>
+#include <stdexcept>
 
-#include "accel/accel.h"
-#include "accel/grid_resolution.h"
-#include "renderer/io/error.h"
-#include "renderer/commands/render_options.h"
-#include "renderer/commands/bench_command.h"
-#include "renderer/commands/calibrate_command.h"
-#include "renderer/commands/cast_command.h"
-#include "renderer/commands/render_command.h"
+#include "renderer/cli/accel_flags.h"
+#include "renderer/util/error.h"
 #include "renderer/version.h"
 
 namespace kappa {
@@ -21,24 +16,8 @@ namespace {
 
 void add_render_options(CLI::App& render, RenderOptions& o) {
   render.add_option("scene", o.scene, "scene.json or .obj file")->required();
-  render.add_option("--accel", o.accel, "accelerator")->check(CLI::IsMember(accelerator_names()))->capture_default_str();
-  render.add_option("--grid-res", o.grid_res, "grid resolution: auto, N (cubic) or NxNxN")
-      ->check(CLI::Validator(
-          [](std::string& value) {
-            try {
-              parse_grid_resolution(value);
-              return std::string();
-            } catch (const std::invalid_argument& e) {
-              std::string reason = e.what();  // drop the "--grid-res: " prefix CLI11 adds again
-              return reason.substr(reason.find(": ") + 2);
-            }
-          },
-          "auto|N|NxNxN"))
-      ->capture_default_str();
-  render.add_option("--grid-density", o.grid_density, "cells per triangle for --grid-res auto (default 32)")
-      ->check(CLI::Range(1e-6, 1e6));
-  render.add_option("--grid-max-bytes", o.grid_max_bytes, "refuse larger grids (default: a quarter of RAM)")
-      ->check(CLI::Range(std::uint64_t(1), std::numeric_limits<std::uint64_t>::max()));
+  add_accel_flag(render, o.accel, "accelerator");
+  add_grid_flags(render, o.build);
   render.add_option("--spp", o.spp, "samples per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
   render.add_option("--max-depth", o.max_depth, "bounces after the camera ray (1 = direct lighting)")
       ->check(CLI::Range(0, 1 << 20))
@@ -71,11 +50,7 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
 
 void add_bench_options(CLI::App& bench, BenchOptions& o) {
   bench.add_option("scene", o.scene, "scene.json or .obj file")->required();
-  bench.add_option("--accel", o.accels, "accelerators to compare")
-      ->delimiter(',')
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-      ->check(CLI::IsMember(accelerator_names()))
-      ->capture_default_str();
+  add_accel_list_flag(bench, o.accels, "accelerators to compare");
   bench.add_option("--rays", o.rays, "ray classes")
       ->delimiter(',')
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
@@ -90,8 +65,7 @@ void add_bench_options(CLI::App& bench, BenchOptions& o) {
   bench.add_option("--n", o.n, "rays per class")->check(CLI::Range(std::size_t(1), std::size_t(1) << 28))->capture_default_str();
   bench.add_option("--seed", o.seed, "random seed of the ray sets")->capture_default_str();
   bench.add_option("--json", o.json, "also write the figures as JSON");
-  bench.add_option("--grid-res", o.grid_res, "grid resolution: auto, N or NxNxN")->capture_default_str();
-  bench.add_option("--grid-density", o.grid_density, "cells per triangle for --grid-res auto")->check(CLI::Range(1e-6, 1e6));
+  add_grid_flags(bench, o.build);
   bench.add_option("--naive-budget", o.naive_budget_s, "skip naive when its estimated run time exceeds this (s)")
       ->capture_default_str();
 }
@@ -102,14 +76,8 @@ void add_cast_options(CLI::App& cast, CastOptions& o) {
       ->check(CLI::IsMember({"lines", "segments", "camera", "bounce", "shadow"}))
       ->capture_default_str();
   cast.add_option("--n", o.n, "rays to cast")->check(CLI::Range(std::size_t(1), std::size_t(1) << 30))->capture_default_str();
-  cast.add_option("--accel", o.accel, "accelerator (per-cell statistics need grid)")
-      ->check(CLI::IsMember(accelerator_names()))
-      ->capture_default_str();
-  cast.add_option("--grid-res", o.grid_res, "grid resolution: auto, N or NxNxN")->capture_default_str();
-  cast.add_option("--grid-density", o.grid_density, "cells per triangle for --grid-res auto")->check(CLI::Range(1e-6, 1e6));
-  cast.add_option("--grid-max-bytes", o.grid_max_bytes,
-                  "refuse larger grids; per-cell counters beyond it are refused, totals kept (default: a quarter of RAM)")
-      ->check(CLI::Range(std::uint64_t(1), std::numeric_limits<std::uint64_t>::max()));
+  add_accel_flag(cast, o.accel, "accelerator (per-cell statistics need grid)");
+  add_grid_flags(cast, o.build);
   cast.add_option("--seed", o.seed, "random seed")->capture_default_str();
   cast.add_option("--length", o.length, "segment length for --rays segments (default: two mean cell widths)")
       ->check(CLI::PositiveNumber);
@@ -131,12 +99,13 @@ void add_calibrate_options(CLI::App& calibrate, CalibrateOptions& o) {
                        "threads walking at once; times are thread-seconds, as the render report measures them "
                        "(default: all cores)")
       ->check(CLI::Range(1, 4096));
+  add_grid_max_bytes_flag(calibrate, o.build);
   calibrate.add_option("--out", o.out, "calibration file (default: kappa_calibration.json beside the executable)");
 }
 
 }  // namespace
 
-int run_cli(int argc, char** argv) {
+std::optional<int> parse_command_line(int argc, char** argv, Command& command) {
   CLI::App app{"Kappa: a path tracer that measures the cost of ray casting", "kappa"};
   app.set_version_flag("--version", std::string("kappa ") + version_string());
   app.require_subcommand(1);
@@ -169,12 +138,16 @@ int run_cli(int argc, char** argv) {
     std::fprintf(stderr, "kappa: error: %s (see kappa --help)\n", printable_line(e.what()).c_str());
     return 2;
   }
+  if (render->parsed()) command = std::move(render_options);
+  else if (bench->parsed()) command = std::move(bench_options);
+  else if (cast->parsed()) command = std::move(cast_options);
+  else command = std::move(calibrate_options);  // require_subcommand(1): one of the four
+  return std::nullopt;
+}
 
+int exit_code_of(const std::function<int()>& run) {
   try {
-    if (render->parsed()) return run_render(render_options);
-    if (bench->parsed()) return run_bench(bench_options);
-    if (cast->parsed()) return run_cast(cast_options);
-    if (calibrate->parsed()) return run_calibrate(calibrate_options);
+    return run();
   } catch (const std::invalid_argument& e) {  // options an accelerator refuses
     std::fprintf(stderr, "kappa: error: %s\n", printable_line(e.what()).c_str());
     return 2;
@@ -188,7 +161,6 @@ int run_cli(int argc, char** argv) {
     std::fprintf(stderr, "kappa: internal error: %s\n", printable_line(e.what()).c_str());
     return 1;
   }
-  return 0;
 }
 
 }  // namespace kappa

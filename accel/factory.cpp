@@ -1,0 +1,31 @@
+#include "factory.h"
+
+#include <stdexcept>
+
+#include "embree.h"
+#include "grid.h"
+#include "naive.h"
+
+namespace kappa {
+
+std::uint64_t AccelOptions::max_bytes() const { return grid_max_bytes > 0 ? grid_max_bytes : default_grid_max_bytes(); }
+
+GridOptions grid_options(const AccelOptions& options) {
+  GridOptions grid;
+  grid.resolution = parse_grid_resolution(options.grid_res);
+  if (options.grid_density > 0) grid.density = options.grid_density;
+  grid.max_bytes = options.max_bytes();
+  return grid;
+}
+
+std::vector<std::string> accelerator_names() { return {"embree", "grid", "naive"}; }
+
+std::unique_ptr<Accelerator> make_accelerator(std::string_view name, std::span<const Triangle> triangles,
+                                              const AccelOptions& options) {
+  if (name == "naive") return std::make_unique<NaiveAccelerator>(triangles);
+  if (name == "embree") return std::make_unique<EmbreeAccelerator>(triangles);
+  if (name == "grid") return std::make_unique<UniformGrid>(triangles, grid_options(options));
+  throw std::invalid_argument("unknown accelerator '" + std::string(name) + "'");
+}
+
+}  // namespace kappa

@@ -1,0 +1,76 @@
+// What each `kappa` subcommand can be told: plain structs holding the
+// defaults the README documents, filled by the command line (command_line.cpp)
+// and read by the commands (commands/).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "accel/factory.h"
+
+namespace kappa {
+
+struct RenderOptions {
+  std::string scene;            ///< scene.json or .obj
+  std::string accel = "grid";   ///< accelerator name (accel/accel.h)
+  AccelOptions build;           ///< --grid-res, --grid-density, --grid-max-bytes
+  int spp = 64;                 ///< samples per pixel
+  int max_depth = 32;           ///< bounces after the camera ray
+  int rr_depth = 3;             ///< Russian roulette from this bounce on
+  bool no_rr = false;           ///< disable Russian roulette
+  std::uint64_t seed = 0;
+  int threads = 0;              ///< 0 = all cores
+  int width = 0, height = 0;    ///< 0 = the scene's film size
+  std::string out;              ///< default out/<scene name>.exr
+  std::string aov;              ///< comma list of albedo, normal, depth, cost
+  bool quiet = false;
+#ifdef KAPPA_NO_STATS
+  std::string stats = "off";    ///< a build without statistics (-DKAPPA_STATS=OFF) has only off
+#else
+  std::string stats = "on";     ///< per-class counters during the render: on | off
+#endif
+  std::string report;           ///< per-frame JSON report path
+  std::string cell_sample = "auto";  ///< per-cell counts for 1 path in N: auto | N
+  std::string cell_map;         ///< --cell-map F.exr|png
+  std::string cell_map_axis = "y";  ///< projection axis of the cell map
+  std::string calibration;      ///< T0/Ts/Th file (default: kappa_calibration.json beside the executable)
+};
+
+struct CastOptions {
+  std::string scene;
+  std::string rays = "lines";  ///< lines | segments | camera | bounce | shadow
+  std::size_t n = 1000000;
+  std::string accel = "grid";
+  AccelOptions build;          ///< grid_max_bytes also bounds the per-cell counters
+  std::uint64_t seed = 0;
+  double length = 0;  ///< segment length; 0 = two mean cell widths
+  int threads = 0;
+  std::string report;  ///< JSON report path
+  bool quiet = false;
+};
+
+struct BenchOptions {
+  std::string scene;
+  std::vector<std::string> accels = {"naive", "grid", "embree"};
+  std::vector<std::string> rays = {"camera", "bounce", "shadow", "lines"};
+  std::vector<int> threads = {1, 2};
+  int repeat = 5;
+  std::size_t n = std::size_t(1) << 20;  ///< rays per class
+  std::uint64_t seed = 0;
+  std::string json;        ///< write the figures here too
+  AccelOptions build;
+  double naive_budget_s = 60;  ///< skip naive when its estimated time exceeds this
+};
+
+struct CalibrateOptions {
+  std::vector<std::string> scenes;  ///< default: the Cornell box and the low-resolution bunny in assets/
+  std::vector<double> densities = {2, 8, 32, 128, 512};
+  std::size_t n = 100000;  ///< rays per class and grid
+  int repeat = 3;
+  int threads = 0;  ///< threads walking at once (0 = all cores, as a render runs)
+  AccelOptions build;  ///< grid_max_bytes only: the densities set the resolutions
+  std::string out;  ///< default: default_calibration_path()
+};
+
+}  // namespace kappa

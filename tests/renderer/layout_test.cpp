@@ -1,0 +1,146 @@
+// The layout README.md's "How it is built" describes, read off the sources:
+// renderer/ holds rooms with only main.cpp and a few shared headers at its
+// top, no component includes itself through others, no two rooms depend on
+// each other, no command includes another, and the libraries below the
+// renderer (accel, stats) never include it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "test_util.h"
+
+namespace kappa {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A component is a header and its source file together ("renderer/scene/obj_scan").
+using Graph = std::map<std::string, std::set<std::string>>;
+
+/// grid_traverse.h is the body of grid.h's member templates (the walk, for
+/// any recorder): part of the grid's component, not a layer above or below it.
+std::string component_of(const std::string& path) {
+  const std::string c = fs::path(path).replace_extension().string();
+  return c == "accel/grid_traverse" ? "accel/grid" : c;
+}
+
+/// Every #include "..." of every .h and .cpp under the given top folders, as
+/// edges between components (paths relative to the source tree).
+Graph include_graph(const std::vector<std::string>& tops) {
+  static const std::regex include(R"(^\s*#\s*include\s+"([^"]+)\")");
+  Graph g;
+  for (const auto& top : tops) {
+    for (const auto& entry : fs::recursive_directory_iterator(test::source_dir() / top)) {
+      const auto ext = entry.path().extension();
+      if (!entry.is_regular_file() || (ext != ".h" && ext != ".cpp")) continue;
+      const std::string file = fs::relative(entry.path(), test::source_dir()).string();
+      const std::string from = component_of(file);
+      g[from];
+      std::ifstream in(entry.path());
+      std::string line;
+      std::smatch m;
+      while (std::getline(in, line)) {
+        if (!std::regex_search(line, m, include)) continue;
+        std::string target = m[1];
+        // Includes are from the source tree's root, or (in accel/ and stats/)
+        // beside the including file.
+        if (!fs::exists(test::source_dir() / target))
+          target = (fs::path(file).parent_path() / target).lexically_normal().string();
+        if (!fs::exists(test::source_dir() / target)) continue;  // a system or generated header
+        const std::string to = component_of(target);
+        if (to != from) g[from].insert(to);
+      }
+    }
+  }
+  return g;
+}
+
+/// One cycle of `g` as "a -> b -> a", or empty if it has none.
+std::string find_cycle(const Graph& g) {
+  std::map<std::string, int> state;  // 0 unvisited, 1 on the stack, 2 done
+  std::vector<std::string> stack;
+  std::string cycle;
+  std::function<bool(const std::string&)> visit = [&](const std::string& v) {
+    state[v] = 1;
+    stack.push_back(v);
+    const auto it = g.find(v);
+    if (it != g.end()) {
+      for (const auto& w : it->second) {
+        if (state[w] == 1) {
+          for (auto s = std::find(stack.begin(), stack.end(), w); s != stack.end(); ++s) cycle += *s + " -> ";
+          cycle += w;
+          return true;
+        }
+        if (state[w] == 0 && visit(w)) return true;
+      }
+    }
+    stack.pop_back();
+    state[v] = 2;
+    return false;
+  };
+  for (const auto& [v, _] : g)
+    if (state[v] == 0 && visit(v)) return cycle;
+  return {};
+}
+
+/// "stats/cast" -> "stats": the top folder.
+std::string library_of(const std::string& component) { return fs::path(component).begin()->string(); }
+
+/// "renderer/scene/obj_scan" -> "scene"; a file at renderer/'s top (main, a
+/// shared header) is a room of its own: "main", "version".
+std::string room_of(const std::string& component) {
+  const fs::path p(component);
+  auto it = std::next(p.begin());
+  return it == p.end() ? "" : it->string();
+}
+
+TEST(Layout, RendererTopHoldsOnlyMainAndSharedHeaders) {
+  const std::set<std::string> allowed = {"main.cpp", "version.h", "CMakeLists.txt"};
+  for (const auto& entry : fs::directory_iterator(test::source_dir() / "renderer")) {
+    if (entry.is_directory()) continue;
+    EXPECT_TRUE(allowed.count(entry.path().filename().string())) << entry.path() << " belongs in a room of renderer/";
+  }
+}
+
+TEST(Layout, NoComponentIncludesItselfThroughOthers) {
+  const Graph g = include_graph({"accel", "stats", "renderer"});
+  EXPECT_GT(g.size(), 40u);  // the walk found the sources
+  EXPECT_EQ(find_cycle(g), "");
+}
+
+TEST(Layout, RoomsOfTheRendererFormNoCycle) {
+  Graph rooms;
+  for (const auto& [from, targets] : include_graph({"renderer"})) {
+    for (const auto& to : targets) {
+      const std::string a = room_of(from), b = room_of(to);
+      if (library_of(to) == "renderer" && a != b) rooms[a].insert(b);
+    }
+  }
+  EXPECT_TRUE(rooms.count("commands"));  // the graph has the rooms' edges
+  EXPECT_EQ(find_cycle(rooms), "");
+}
+
+TEST(Layout, NoCommandIncludesAnother) {
+  for (const auto& [from, targets] : include_graph({"renderer"})) {
+    if (room_of(from) != "commands") continue;
+    for (const auto& to : targets) EXPECT_NE(room_of(to), "commands") << from << " includes " << to;
+  }
+}
+
+TEST(Layout, LibrariesBelowTheRendererNeverIncludeIt) {
+  for (const auto& [from, targets] : include_graph({"accel", "stats"}))
+    for (const auto& to : targets) EXPECT_NE(library_of(to), "renderer") << from << " includes " << to;
+  for (const auto& [from, targets] : include_graph({"accel"}))
+    for (const auto& to : targets) EXPECT_EQ(library_of(to), "accel") << from << " includes " << to;
+}
+
+}  // namespace
+}  // namespace kappa
