@@ -14,11 +14,13 @@ Vec3d isotropic(std::mt19937_64& rng) {
   return {s * std::cos(phi), s * std::sin(phi), z};
 }
 
-bool meets_box(const Vec3d& o, const Vec3d& d, const Vec3d& lo, const Vec3d& hi) {
-  double t0 = -INFINITY, t1 = INFINITY;
+}  // namespace
+
+std::optional<std::pair<double, double>> clip_to_box(const Vec3d& o, const Vec3d& d, const Vec3d& lo, const Vec3d& hi,
+                                                     double t0, double t1) {
   for (int a = 0; a < 3; ++a) {
     if (d[a] == 0) {
-      if (o[a] < lo[a] || o[a] > hi[a]) return false;
+      if (o[a] < lo[a] || o[a] > hi[a]) return std::nullopt;
       continue;
     }
     double tn = (lo[a] - o[a]) / d[a], tf = (hi[a] - o[a]) / d[a];
@@ -26,10 +28,9 @@ bool meets_box(const Vec3d& o, const Vec3d& d, const Vec3d& lo, const Vec3d& hi)
     t0 = std::max(t0, tn);
     t1 = std::min(t1, tf);
   }
-  return t0 <= t1;
+  if (!(t0 <= t1)) return std::nullopt;
+  return std::pair{t0, t1};
 }
-
-}  // namespace
 
 std::vector<Ray> uniform_lines(const Vec3d& lo, const Vec3d& hi, std::size_t n, std::uint64_t seed) {
   std::mt19937_64 rng(seed ^ 0x6c696e6573ull);  // "lines"
@@ -45,7 +46,7 @@ std::vector<Ray> uniform_lines(const Vec3d& lo, const Vec3d& hi, std::size_t n, 
     const Vec3d s{1.0 + sign * d.x * d.x * a, sign * b, -sign * d.x}, t{b, sign + d.y * d.y * a, -d.y};
     const double r = radius * std::sqrt(u(rng)), phi = 2.0 * std::numbers::pi * u(rng);
     const Vec3d p = center + s * (r * std::cos(phi)) + t * (r * std::sin(phi));
-    if (!meets_box(p, d, lo, hi)) continue;
+    if (!clip_to_box(p, d, lo, hi)) continue;
     rays.push_back(Ray{Vec3f(p - d * (1.01 * radius)), Vec3f(d)});
   }
   return rays;

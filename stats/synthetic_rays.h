@@ -1,13 +1,23 @@
 // The seed paper's synthetic ray distributions, through a box.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "accel/ray.h"
 #include "accel/vec3.h"
 
 namespace kappa {
+
+/// The slab test: the part [t0, t1] of the ray o + t d inside the box [lo,
+/// hi], narrowed from the given [t0, t1]; nullopt if the ray misses the box.
+/// Axes with d = 0 are tested without dividing. (The grid walk clips in its
+/// own loop, where it also keeps 1/d.)
+std::optional<std::pair<double, double>> clip_to_box(const Vec3d& o, const Vec3d& d, const Vec3d& lo, const Vec3d& hi,
+                                                     double t0 = -INFINITY, double t1 = INFINITY);
 
 /// n isotropic uniform random lines meeting the box [lo, hi]: a direction
 /// uniform on the sphere, then a point uniform on the disk the box's bounding

@@ -14,7 +14,9 @@
 namespace kappa {
 namespace {
 
-void add_render_options(CLI::App& render, RenderOptions& o) {
+/// `kappa render` and its flags, bound to `o`.
+CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
+  CLI::App& render = *app.add_subcommand("render", "render a scene to EXR");
   render.add_option("scene", o.scene, "scene.json or .obj file")->required();
   add_accel_flag(render, o.accel, "accelerator");
   add_grid_flags(render, o.build);
@@ -46,9 +48,12 @@ void add_render_options(CLI::App& render, RenderOptions& o) {
       ->check(CLI::IsMember({"x", "y", "z"}))
       ->capture_default_str();
   render.add_option("--calibration", o.calibration, "cost model constants from kappa calibrate (default: beside the executable)");
+  return &render;
 }
 
-void add_bench_options(CLI::App& bench, BenchOptions& o) {
+/// `kappa bench` and its flags, bound to `o`.
+CLI::App* add_bench_command(CLI::App& app, BenchOptions& o) {
+  CLI::App& bench = *app.add_subcommand("bench", "time every accelerator on the same rays (Mrays/s)");
   bench.add_option("scene", o.scene, "scene.json or .obj file")->required();
   add_accel_list_flag(bench, o.accels, "accelerators to compare");
   bench.add_option("--rays", o.rays, "ray classes")
@@ -68,9 +73,12 @@ void add_bench_options(CLI::App& bench, BenchOptions& o) {
   add_grid_flags(bench, o.build);
   bench.add_option("--naive-budget", o.naive_budget_s, "skip naive when its estimated run time exceeds this (s)")
       ->capture_default_str();
+  return &bench;
 }
 
-void add_cast_options(CLI::App& cast, CastOptions& o) {
+/// `kappa cast` and its flags, bound to `o`.
+CLI::App* add_cast_command(CLI::App& app, CastOptions& o) {
+  CLI::App& cast = *app.add_subcommand("cast", "cast synthetic or renderer rays with statistics on (kappa, p_tot, ...)");
   cast.add_option("scene", o.scene, "scene.json or .obj file")->required();
   cast.add_option("--rays", o.rays, "ray distribution")
       ->check(CLI::IsMember({"lines", "segments", "camera", "bounce", "shadow"}))
@@ -84,9 +92,12 @@ void add_cast_options(CLI::App& cast, CastOptions& o) {
   cast.add_option("--threads", o.threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   cast.add_option("--report", o.report, "write the JSON report here");
   cast.add_flag("-q,--quiet", o.quiet, "no table on stdout");
+  return &cast;
 }
 
-void add_calibrate_options(CLI::App& calibrate, CalibrateOptions& o) {
+/// `kappa calibrate` and its flags, bound to `o`.
+CLI::App* add_calibrate_command(CLI::App& app, CalibrateOptions& o) {
+  CLI::App& calibrate = *app.add_subcommand("calibrate", "measure the cost model's T0, Ts, Th on this machine");
   calibrate.add_option("scenes", o.scenes, "scenes to measure (default: the Cornell box and the low-res bunny)");
   calibrate.add_option("--density", o.densities, "grid densities (cells per triangle) to measure at")
       ->delimiter(',')
@@ -101,6 +112,7 @@ void add_calibrate_options(CLI::App& calibrate, CalibrateOptions& o) {
       ->check(CLI::Range(1, 4096));
   add_grid_max_bytes_flag(calibrate, o.build);
   calibrate.add_option("--out", o.out, "calibration file (default: kappa_calibration.json beside the executable)");
+  return &calibrate;
 }
 
 }  // namespace
@@ -113,25 +125,17 @@ std::optional<int> parse_command_line(int argc, char** argv, Command& command) {
   // can pass defaults that the user's own arguments override.
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   RenderOptions render_options;
-  CLI::App* render = app.add_subcommand("render", "render a scene to EXR");
-  add_render_options(*render, render_options);
   BenchOptions bench_options;
-  CLI::App* bench = app.add_subcommand("bench", "time every accelerator on the same rays (Mrays/s)");
-  add_bench_options(*bench, bench_options);
   CastOptions cast_options;
-  CLI::App* cast = app.add_subcommand("cast", "cast synthetic or renderer rays with statistics on (kappa, p_tot, ...)");
-  add_cast_options(*cast, cast_options);
   CalibrateOptions calibrate_options;
-  CLI::App* calibrate = app.add_subcommand("calibrate", "measure the cost model's T0, Ts, Th on this machine");
-  add_calibrate_options(*calibrate, calibrate_options);
+  const CLI::App* render = add_render_command(app, render_options);
+  const CLI::App* bench = add_bench_command(app, bench_options);
+  const CLI::App* cast = add_cast_command(app, cast_options);
+  add_calibrate_command(app, calibrate_options);
 
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
+  } catch (const CLI::Success& e) {  // --help, --help-all, --version: printed, exit 0
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // CLI11's own codes are 105-109; Kappa's contract for bad options is 2.

@@ -7,7 +7,6 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -15,7 +14,7 @@
 #include "accel/factory.h"
 #include "accel/grid.h"
 #include "renderer/io/atomic_file.h"
-#include "renderer/render/bench_rays.h"
+#include "renderer/render/ray_sets.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/util/error.h"
 

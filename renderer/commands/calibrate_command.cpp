@@ -9,14 +9,13 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 
 #include "accel/factory.h"
 #include "accel/grid.h"
 #include "accel/grid_traverse.h"
 #include "accel/thread_limit.h"
 #include "renderer/io/atomic_file.h"
-#include "renderer/render/bench_rays.h"
+#include "renderer/render/ray_sets.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/util/error.h"
 #include "stats/calibration.h"

@@ -5,49 +5,23 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <optional>
 
 #include "accel/factory.h"
 #include "accel/grid.h"
 #include "accel/thread_limit.h"
 #include "renderer/io/atomic_file.h"
-#include "renderer/render/bench_rays.h"
+#include "renderer/render/ray_sets.h"
+#include "renderer/report/report_sections.h"
+#include "renderer/report/stats_table.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/util/error.h"
-#include "renderer/version.h"
 #include "stats/cast.h"
 #include "stats/cost_model.h"
 #include "stats/report.h"
 #include "stats/synthetic_rays.h"
 
 namespace kappa {
-namespace {
-
-std::string format_or_dash(const nlohmann::ordered_json& v, const char* fmt) {
-  if (!v.is_number()) return "-";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, fmt, v.get<double>());
-  return buf;
-}
-
-void print_table(const std::string& cls, const nlohmann::ordered_json& grid, const nlohmann::ordered_json& rays) {
-  std::printf("grid %s x %s x %s: N_c %s, N %s, theta_tot %s (eq19 %s, eq21 %s), empty %s\n",
-              grid["res"][0].dump().c_str(), grid["res"][1].dump().c_str(), grid["res"][2].dump().c_str(),
-              grid["N_c"].dump().c_str(), grid["N"].dump().c_str(), grid["theta_tot"].dump().c_str(),
-              format_or_dash(grid["theta_tot_eq19"], "%.0f").c_str(), format_or_dash(grid["theta_tot_eq21"], "%.0f").c_str(),
-              format_or_dash(grid["empty_fraction"], "%.3f").c_str());
-  std::printf("%-9s %10s %9s %9s %9s %9s %9s %8s %8s %8s\n", "rays", "count", "cells", "predicted", "tests", "refs",
-              "p_tot", "r", "kappa", "eq25");
-  std::printf("%-9s %10s %9s %9s %9s %9s %9s %8s %8s %8s\n", cls.c_str(), rays["count"].dump().c_str(),
-              format_or_dash(rays["cells_per_ray"], "%.3f").c_str(),
-              format_or_dash(rays.value("p_tot_predicted", rays["cells_per_ray_predicted"]), "%.3f").c_str(),
-              format_or_dash(rays["tests_per_ray"], "%.3f").c_str(), format_or_dash(rays["refs_per_ray"], "%.3f").c_str(),
-              format_or_dash(rays["p_tot"], "%.3f").c_str(), format_or_dash(rays["r"], "%.3f").c_str(),
-              format_or_dash(rays["kappa"], "%.3f").c_str(), format_or_dash(rays["kappa_eq25"], "%.3f").c_str());
-}
-
-}  // namespace
 
 int run_cast(const CastOptions& options) {
   std::unique_ptr<AtomicOutput> report_out;
@@ -91,11 +65,7 @@ int run_cast(const CastOptions& options) {
     std::fprintf(stderr, "kappa: warning: %zu of the %zu rays asked for could be made (the report counts those)\n",
                  rays.size(), options.n);
 
-  nlohmann::ordered_json report;
-  report["schema_version"] = kReportSchemaVersion;
-  report["kappa_version"] = version_string();
-  report["scene"] = scene.source.string();
-  report["accel"] = std::string(accel->name());
+  nlohmann::ordered_json report = report_header(scene, *accel);
   report["render"] = nullptr;  // a cast renders nothing
   report["cast"] = {{"rays", options.rays}, {"n", rays.size()}, {"seed", options.seed},
                     {"threads", active_threads()}};
@@ -104,11 +74,8 @@ int run_cast(const CastOptions& options) {
   nlohmann::ordered_json ray_section;
   if (grid) {
     const CastMeasurement m = cast_with_counters(*grid, rays, walk, options.build.max_bytes());
-    report["stats"] = {{"per_cell", m.counters.per_cell()}};
-    if (!m.stats_note.empty()) {
-      report["stats_note"] = m.stats_note;
-      std::fprintf(stderr, "kappa: warning: %s\n", m.stats_note.c_str());
-    }
+    add_stats_block(report, m.counters.per_cell(), std::nullopt, m.stats_note);
+    if (!m.stats_note.empty()) std::fprintf(stderr, "kappa: warning: %s\n", m.stats_note.c_str());
     if (options.rays == "lines")
       p_tot_predicted = p_tot_lines_eq22(hi - lo, grid->info().cell_size, double(grid->info().resolution.cells()));
     report["grid"] = grid_section(*grid, scene.triangles);
@@ -122,17 +89,14 @@ int run_cast(const CastOptions& options) {
       hits.fetch_add(hit, std::memory_order_relaxed);
     });
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    ray_section = {{"count", rays.size()},
-                   {"hit_fraction", rays.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(double(hits) / double(rays.size()))},
-                   {"time_s", s}};
+    ray_section = any_accel_class_section(rays.size(), hits, s);
   }
   report["rays"] = {{options.rays, ray_section}};
   report["cost"] = nullptr;  // no calibration yet (T0, Ts, Th)
 
   if (!options.quiet) {
-    if (grid) print_table(options.rays, report["grid"], ray_section);
-    else std::printf("%s: %s rays, hit fraction %s\n", options.rays.c_str(), ray_section["count"].dump().c_str(),
-                     ray_section["hit_fraction"].dump().c_str());
+    if (grid) std::fputs(grid_occupancy_line(report["grid"]).c_str(), stdout);
+    std::fputs(stats_table(report).c_str(), stdout);
   }
   if (report_out) {
     write_and_commit(*report_out, report.dump(2) + "\n");

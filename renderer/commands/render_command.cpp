@@ -6,7 +6,6 @@
 #include <chrono>
 #include <optional>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 #include "accel/byte_size.h"
@@ -19,6 +18,7 @@
 #include "renderer/io/exr_output.h"
 #include "renderer/render/integrator.h"
 #include "renderer/report/render_report.h"
+#include "renderer/report/stats_table.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/util/error.h"
 #include "renderer/version.h"
@@ -177,7 +177,7 @@ int run_render(const RenderOptions& options) {
                  result.seconds, static_cast<unsigned long long>(result.rays),
                  result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0, output.target().c_str());
     std::fflush(stderr);
-    print_report_table(report);
+    std::fputs(stats_table(report).c_str(), stdout);
   }
   return 0;
 }

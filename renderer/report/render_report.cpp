@@ -1,9 +1,7 @@
 #include "renderer/report/render_report.h"
 
-#include <cstdio>
-
 #include "accel/grid.h"
-#include "renderer/version.h"
+#include "renderer/report/report_sections.h"
 #include "stats/cast.h"
 #include "stats/report.h"
 
@@ -26,22 +24,11 @@ ClassSummary summary(const ClassTotals& totals, std::uint64_t per_cell_rays, std
   return m;
 }
 
-std::string cell(const nlohmann::ordered_json& v, const char* fmt) {
-  if (!v.is_number()) return "-";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, fmt, v.get<double>());
-  return buf;
-}
-
 }  // namespace
 
 nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& accel, const FrameFacts& frame,
                                      const RenderResult& result, const std::optional<Calibration>& calibration) {
-  nlohmann::ordered_json j;
-  j["schema_version"] = kReportSchemaVersion;
-  j["kappa_version"] = version_string();
-  j["scene"] = scene.source.string();
-  j["accel"] = std::string(accel.name());
+  nlohmann::ordered_json j = report_header(scene, accel);
   j["render"] = {{"width", frame.width},
                  {"height", frame.height},
                  {"spp", frame.spp},
@@ -76,18 +63,14 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
     }
     rays["all"] = ray_class_section(summary(all, all_per_cell_rays, all_visits, theta, all_seconds),
                                     std::nullopt);
-    j["stats"] = {{"per_cell", per_cell}, {"cell_sample", result.cell_sample}};
-    if (!result.stats_note.empty()) j["stats_note"] = result.stats_note;
+    add_stats_block(j, per_cell, result.cell_sample, result.stats_note);
   } else if (result.counters) {
     // Another accelerator: per class what applies to any.
     const RenderCounters& rc = *result.counters;
     ClassTotals all;
     double all_seconds = 0;
     const auto section = [](const ClassTotals& t, double seconds) {
-      return nlohmann::ordered_json{
-          {"count", t.rays},
-          {"hit_fraction", t.rays > 0 ? nlohmann::ordered_json(double(t.hits) / double(t.rays)) : nlohmann::ordered_json()},
-          {"time_s", seconds}};
+      return any_accel_class_section(t.rays, t.hits, seconds);
     };
     for (std::size_t k = 0; k < kRenderClasses; ++k) {
       rays[kRenderClassNames[k]] = section(rc.classes[k].totals, rc.sampled_seconds[k]);
@@ -95,7 +78,7 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
       all_seconds += rc.sampled_seconds[k];
     }
     rays["all"] = section(all, all_seconds);
-    j["stats"] = {{"per_cell", false}};
+    add_stats_block(j, false, std::nullopt, "");
   }
   j["rays"] = rays;
   j["cost"] = nullptr;  // without a calibration (kappa calibrate) there is no prediction
@@ -118,30 +101,6 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
                  {"relative_error", measured > 0 ? nlohmann::ordered_json(predicted / measured - 1.0) : nlohmann::ordered_json()}};
   }
   return j;
-}
-
-void print_report_table(const nlohmann::ordered_json& report) {
-  if (!report.contains("rays") || report["rays"].empty()) return;
-  if (report["cost"].is_object())
-    std::printf("cost (eq 10, thread-seconds of traversal): predicted %.3f s, measured %.3f s, error %s (T0 %.1f ns, Ts %.1f ns, Th %.1f ns)\n",
-                report["cost"]["predicted_s"].get<double>(), report["cost"]["measured_s"].get<double>(),
-                cell(report["cost"]["relative_error"], "%+.3f").c_str(), report["cost"]["T0_ns"].get<double>(),
-                report["cost"]["Ts_ns"].get<double>(), report["cost"]["Th_ns"].get<double>());
-  if (!report.contains("grid")) {  // another accelerator: what applies to any
-    std::printf("%-9s %11s %8s %10s\n", "rays", "count", "hits", "time_s");
-    for (const auto& [name, c] : report["rays"].items())
-      std::printf("%-9s %11s %8s %10s\n", name.c_str(), c["count"].dump().c_str(), cell(c["hit_fraction"], "%.3f").c_str(),
-                  cell(c["time_s"], "%.3f").c_str());
-    return;
-  }
-  std::printf("%-9s %11s %8s %9s %8s %8s %8s %7s %7s\n", "rays", "count", "cells", "predicted", "tests", "refs",
-              "p_tot", "r", "kappa");
-  for (const auto& [name, c] : report["rays"].items()) {
-    std::printf("%-9s %11s %8s %9s %8s %8s %8s %7s %7s\n", name.c_str(), c["count"].dump().c_str(),
-                cell(c["cells_per_ray"], "%.2f").c_str(), cell(c["cells_per_ray_predicted"], "%.2f").c_str(),
-                cell(c["tests_per_ray"], "%.2f").c_str(), cell(c["refs_per_ray"], "%.2f").c_str(),
-                cell(c["p_tot"], "%.2f").c_str(), cell(c["r"], "%.3f").c_str(), cell(c["kappa"], "%.3f").c_str());
-  }
 }
 
 }  // namespace kappa

@@ -1,5 +1,4 @@
-// The per-frame report of `kappa render` (keys in stats/README.md) and its
-// compact human table.
+// The per-frame report of `kappa render` (keys in stats/README.md).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -21,9 +20,5 @@ struct FrameFacts {
 /// eq 10's predicted traversal time (thread-seconds) beside the measured one.
 nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& accel, const FrameFacts& frame,
                                      const RenderResult& result, const std::optional<Calibration>& calibration = {});
-
-/// One line per ray class: count, cells per ray (measured and predicted),
-/// tests and references per ray, p_tot, r, kappa.
-void print_report_table(const nlohmann::ordered_json& report);
 
 }  // namespace kappa

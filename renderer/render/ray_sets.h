@@ -1,5 +1,7 @@
-// The ray sets `kappa bench` times: generated once from the scene, then
-// replayed identically through every accelerator.
+// The renderer's own rays as fixed sets (camera, bounce, shadow) and the
+// paper's uniform lines, generated once from the scene and then replayed
+// identically: what `kappa bench` times, `kappa cast` counts and `kappa
+// calibrate` fits the cost model to.
 #pragma once
 
 #include <cstdint>
@@ -31,7 +33,8 @@ struct RaySet {
 /// oriented normal at camera hits; shadow rays run from those hits to points
 /// on emitters chosen by power, or, for a scene lit only by its environment,
 /// along cosine-weighted directions with an infinite tmax; lines are
-/// isotropic uniform random lines through the scene's bounding box.
+/// isotropic uniform random lines through the scene's bounding box
+/// (stats/synthetic_rays.h's uniform_lines, as cast and calibrate use).
 RaySet make_ray_set(RayClass kind, const Scene& scene, const Accelerator& reference, std::size_t n,
                     std::uint64_t seed);
 

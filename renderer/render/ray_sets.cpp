@@ -1,13 +1,13 @@
-#include "renderer/render/bench_rays.h"
+#include "renderer/render/ray_sets.h"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include "renderer/render/camera.h"
 #include "renderer/render/interaction.h"
 #include "renderer/render/lights.h"
 #include "renderer/render/sampling.h"
+#include "stats/synthetic_rays.h"
 
 namespace kappa {
 namespace {
@@ -112,32 +112,7 @@ RaySet make_ray_set(RayClass kind, const Scene& scene, const Accelerator& refere
                           : "no emitters: cosine-weighted from camera hits, infinite tmax";
   } else {
     const Bounds3f b = scene.bounds();
-    const Vec3d center(b.center());
-    const double radius = std::max(0.5 * length(Vec3d(b.diagonal())), 1e-30);
-    for (std::size_t tries = 0; set.rays.size() < n && tries < 100 * n; ++tries) {
-      // Isotropic direction, then a point uniform on the disk it projects the
-      // bounding sphere to: uniformly distributed lines.
-      const float z = 1.0f - 2.0f * rng.uniform(), phi = 2.0f * std::numbers::pi_v<float> * rng.uniform();
-      const float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
-      const Vec3f d{s * std::cos(phi), s * std::sin(phi), z};
-      const Frame frame(d);
-      const float r = float(radius) * std::sqrt(rng.uniform()), a = 2.0f * std::numbers::pi_v<float> * rng.uniform();
-      const Vec3d p = center + Vec3d(frame.s) * double(r * std::cos(a)) + Vec3d(frame.t) * double(r * std::sin(a));
-      const Vec3f o = Vec3f(p - Vec3d(d) * radius);
-      // Keep only lines that cross the box.
-      double t0 = 0, t1 = INFINITY;
-      for (int k = 0; k < 3; ++k) {
-        if (d[k] == 0.0f) {
-          if (o[k] < b.lo[k] || o[k] > b.hi[k]) t0 = INFINITY;
-          continue;
-        }
-        double tn = (double(b.lo[k]) - o[k]) / d[k], tf = (double(b.hi[k]) - o[k]) / d[k];
-        if (tn > tf) std::swap(tn, tf);
-        t0 = std::max(t0, tn);
-        t1 = std::min(t1, tf);
-      }
-      if (t0 <= t1) set.rays.push_back(Ray{o, d});
-    }
+    set.rays = uniform_lines(Vec3d(b.lo), Vec3d(b.hi), n, seed);
     set.note = "isotropic uniform lines through the scene box";
   }
   return set;

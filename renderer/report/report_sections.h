@@ -1,0 +1,29 @@
+// The parts every report shares, written once for `kappa render` and `kappa
+// cast` (keys in stats/README.md): the header, the "stats" block that says how
+// the counting ran, and what any accelerator reports about a class of rays.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "accel/accel.h"
+#include "renderer/scene/scene.h"
+
+namespace kappa {
+
+/// schema_version, kappa_version, scene and accel: the keys every report starts with.
+nlohmann::ordered_json report_header(const Scene& scene, const Accelerator& accel);
+
+/// "stats": {"per_cell", and "cell_sample" when given}, and "stats_note" when
+/// per-cell counters were refused (`note` says why).
+void add_stats_block(nlohmann::ordered_json& report, bool per_cell, std::optional<std::uint64_t> cell_sample,
+                     const std::string& note);
+
+/// One class of rays through an accelerator without cell counters: count,
+/// hit_fraction (null without rays) and time_s.
+nlohmann::ordered_json any_accel_class_section(std::uint64_t rays, std::uint64_t hits, double seconds);
+
+}  // namespace kappa

@@ -1,0 +1,69 @@
+#include "renderer/report/stats_table.h"
+
+#include <cstdio>
+
+namespace kappa {
+namespace {
+
+/// `v` formatted with `fmt`, or "-" when it is null (undefined) or absent.
+std::string number(const nlohmann::ordered_json& v, const char* fmt) {
+  if (!v.is_number()) return "-";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, fmt, v.get<double>());
+  return buf;
+}
+
+std::string row(const char* fmt, auto... columns) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, fmt, columns...);
+  return buf;
+}
+
+/// The predicted cells per ray: eq 22 for uniform lines (the whole chord),
+/// eq 24 from each ray's own length otherwise.
+const nlohmann::ordered_json& predicted_cells(const nlohmann::ordered_json& c) {
+  return c.contains("p_tot_predicted") ? c["p_tot_predicted"] : c["cells_per_ray_predicted"];
+}
+
+}  // namespace
+
+std::string stats_table(const nlohmann::ordered_json& report) {
+  std::string out;
+  if (!report.contains("rays") || report["rays"].empty()) return out;
+  if (report.contains("cost") && report["cost"].is_object()) {
+    const auto& c = report["cost"];
+    out += row("cost (eq 10, thread-seconds of traversal): predicted %.3f s, measured %.3f s, error %s "
+               "(T0 %.1f ns, Ts %.1f ns, Th %.1f ns)\n",
+               c["predicted_s"].get<double>(), c["measured_s"].get<double>(),
+               number(c["relative_error"], "%+.3f").c_str(), c["T0_ns"].get<double>(), c["Ts_ns"].get<double>(),
+               c["Th_ns"].get<double>());
+  }
+  const bool grid_counts = report["rays"].begin()->contains("cells_per_ray");
+  if (!grid_counts) {  // another accelerator: what applies to any
+    out += row("%-9s %11s %12s %10s\n", "class", "rays", "hit fraction", "time (s)");
+    for (const auto& [name, c] : report["rays"].items())
+      out += row("%-9s %11s %12s %10s\n", name.c_str(), c["count"].dump().c_str(),
+                 number(c["hit_fraction"], "%.3f").c_str(), number(c["time_s"], "%.3f").c_str());
+    return out;
+  }
+  static const char* kRow = "%-9s %11s %10s %20s %10s %10s %14s %7s %8s %11s\n";
+  out += row(kRow, "class", "rays", "cells/ray", "predicted cells/ray", "tests/ray", "refs/ray", "p_tot (cells)", "r",
+             "kappa", "kappa eq 25");
+  for (const auto& [name, c] : report["rays"].items())
+    out += row(kRow, name.c_str(), c["count"].dump().c_str(),
+               number(c["cells_per_ray"], "%.2f").c_str(), number(predicted_cells(c), "%.2f").c_str(),
+               number(c["tests_per_ray"], "%.2f").c_str(), number(c["refs_per_ray"], "%.2f").c_str(),
+               number(c["p_tot"], "%.2f").c_str(), number(c["r"], "%.3f").c_str(), number(c["kappa"], "%.3f").c_str(),
+               number(c["kappa_eq25"], "%.3f").c_str());
+  return out;
+}
+
+std::string grid_occupancy_line(const nlohmann::ordered_json& grid) {
+  return row("grid %s x %s x %s: N_c %s, N %s, theta_tot %s (eq19 %s, eq21 %s), empty %s\n",
+             grid["res"][0].dump().c_str(), grid["res"][1].dump().c_str(), grid["res"][2].dump().c_str(),
+             grid["N_c"].dump().c_str(), grid["N"].dump().c_str(), grid["theta_tot"].dump().c_str(),
+             number(grid["theta_tot_eq19"], "%.0f").c_str(), number(grid["theta_tot_eq21"], "%.0f").c_str(),
+             number(grid["empty_fraction"], "%.3f").c_str());
+}
+
+}  // namespace kappa
