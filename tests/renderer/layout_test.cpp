@@ -142,5 +142,58 @@ TEST(Layout, LibrariesBelowTheRendererNeverIncludeIt) {
     for (const auto& to : targets) EXPECT_EQ(library_of(to), "accel") << from << " includes " << to;
 }
 
+/// The README's "How it is built" section.
+std::string how_it_is_built() {
+  std::ifstream in(test::source_dir() / "README.md");
+  const std::string readme((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto begin = readme.find("## How it is built");
+  if (begin == std::string::npos) return {};
+  return readme.substr(begin, readme.find("\n## ", begin + 1) - begin);
+}
+
+/// Every source file name under the folders the README describes.
+std::set<std::string> source_file_names() {
+  std::set<std::string> names;
+  for (const char* top : {"accel", "stats", "renderer", "tests", "tools"})
+    for (const auto& entry : fs::recursive_directory_iterator(test::source_dir() / top))
+      if (entry.is_regular_file()) names.insert(entry.path().filename().string());
+  return names;
+}
+
+TEST(Layout, HowItIsBuiltNamesOnlyFilesAndFoldersThatExist) {
+  const std::string section = how_it_is_built();
+  ASSERT_FALSE(section.empty()) << "README.md has no \"How it is built\" section";
+  const std::set<std::string> names = source_file_names();
+  static const std::regex code("`([^`]+)`");
+  static const std::regex source_name(R"(^[\w*]+\.(h|cpp|sh)$)");
+  int checked = 0;
+  for (auto it = std::sregex_iterator(section.begin(), section.end(), code); it != std::sregex_iterator(); ++it) {
+    const std::string token = (*it)[1];
+    if (token.find('<') != std::string::npos || token.find(' ') != std::string::npos) continue;
+    if (token.find('/') != std::string::npos) {  // a path from the source tree's root
+      EXPECT_TRUE(fs::exists(test::source_dir() / token)) << token;
+      ++checked;
+    } else if (std::regex_match(token, source_name)) {  // a file named by itself, perhaps with a *
+      const std::regex pattern(std::regex_replace(std::regex_replace(token, std::regex(R"(\.)"), R"(\.)"),
+                                                  std::regex(R"(\*)"), ".*"));
+      EXPECT_TRUE(std::any_of(names.begin(), names.end(), [&](const std::string& n) { return std::regex_match(n, pattern); }))
+          << token;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 40);
+}
+
+TEST(Layout, HowItIsBuiltHasARowForEveryRoom) {
+  const std::string section = how_it_is_built();
+  for (const auto& entry : fs::directory_iterator(test::source_dir() / "renderer")) {
+    if (!entry.is_directory()) continue;
+    const std::string row = "| `renderer/" + entry.path().filename().string() + "/` |";
+    EXPECT_NE(section.find(row), std::string::npos) << row;
+  }
+  for (const char* top : {"accel", "stats", "tests", "tools", "assets"})
+    EXPECT_NE(section.find(std::string("| `") + top + "/` |"), std::string::npos) << top;
+}
+
 }  // namespace
 }  // namespace kappa

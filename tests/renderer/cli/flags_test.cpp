@@ -215,5 +215,58 @@ TEST(GoodRender, DefaultOutputOfSceneJsonIsNamedAfterItsFolder) {
             (std::vector<std::string>{"out/", "out/cornell-box.exr"}));
 }
 
+// ---------------------------------------------------------------------------
+// Every command that builds an accelerator takes the same grid flags, checked
+// by the same validator, and refuses a grid over --grid-max-bytes before
+// writing anything.
+
+/// `kappa COMMAND <scene> <flags>` with a cheap workload and every output in `tmp`.
+std::vector<std::string> building_command(const std::string& command, const fs::path& tmp,
+                                          std::vector<std::string> flags) {
+  std::vector<std::string> args = {command};
+  if (command == "render") args.insert(args.end(), {good_scene(), "--out", (tmp / "x.exr").string(), "--quiet"});
+  if (command == "cast") args.insert(args.end(), {good_scene(), "--n", "100", "--report", (tmp / "x.json").string()});
+  if (command == "bench")
+    args.insert(args.end(), {good_scene(), "--n", "100", "--repeat", "1", "--threads", "1", "--accel", "grid",
+                             "--json", (tmp / "x.json").string()});
+  if (command == "calibrate")
+    args.insert(args.end(), {(assets_dir() / "cornell-box" / "scene.json").string(), "--n", "200", "--repeat", "1",
+                             "--density", "2,32", "--out", (tmp / "x.json").string()});
+  args.insert(args.end(), flags.begin(), flags.end());
+  return args;
+}
+
+TEST(GridFlags, EveryBuildingCommandRefusesAGridOverGridMaxBytes) {
+  for (const char* command : {"render", "cast", "bench", "calibrate"}) {
+    SCOPED_TRACE(command);
+    TempDir tmp;
+    const RunResult r = run_kappa(building_command(command, tmp.path(), {"--grid-max-bytes", "10"}), tmp.path());
+    expect_one_line_refusal(r);
+    EXPECT_NE(r.std_err.find("--grid-max-bytes (10 bytes)"), std::string::npos) << r.std_err;
+    EXPECT_TRUE(tree(tmp.path()).empty()) << "a refused run writes nothing";
+  }
+}
+
+TEST(GridFlags, EveryCommandWithGridResChecksItAlike) {
+  std::string first_message;
+  for (const char* command : {"render", "cast", "bench"}) {
+    SCOPED_TRACE(command);
+    TempDir tmp;
+    const RunResult r = run_kappa(building_command(command, tmp.path(), {"--grid-res", "0x2"}), tmp.path());
+    expect_one_line_refusal(r);
+    if (first_message.empty()) first_message = r.std_err;
+    EXPECT_EQ(r.std_err, first_message) << "one validator, one message";
+    EXPECT_NE(r.std_err.find("--grid-res"), std::string::npos) << r.std_err;
+  }
+}
+
+TEST(GridFlags, CalibrateBuildsWithinGridMaxBytesWhenItFits) {
+  TempDir tmp;
+  const RunResult r =
+      run_kappa(building_command("calibrate", tmp.path(), {"--grid-max-bytes", "100000000"}), tmp.path());
+  EXPECT_EQ(r.exit_code, 0) << r.std_err;
+  EXPECT_TRUE(fs::is_regular_file(tmp / "x.json"));
+}
+
 }  // namespace
 }  // namespace kappa::test
