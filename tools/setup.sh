@@ -5,7 +5,7 @@
 set -euo pipefail
 
 packages=(
-  cmake g++ ninja-build pkg-config git
+  cmake g++ ninja-build pkg-config git python3
   libopenexr-dev libopenimageio-dev libtinyobjloader-dev libtbb-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev
   libembree-dev libbenchmark-dev

@@ -1,5 +1,6 @@
 #include "renderer/render/ray_sets.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -18,12 +19,29 @@ struct SurfaceSample {
   Vec3f n;  ///< normal facing the camera ray's origin
 };
 
+/// The pixel of stratum k of `strata` over a width x height film: a grid of
+/// about sqrt(strata) columns by rows, each stratum the pixel at the centre
+/// of its cell, so fewer rays than pixels still cover the whole film (the
+/// pixel index k * pixels / strata, used before, put every ray in one column
+/// whenever pixels / strata was a multiple of the width).
+std::size_t stratum_pixel(std::size_t k, std::size_t strata, int width, int height) {
+  const std::size_t pixels = std::size_t(width) * std::size_t(height);
+  if (strata == pixels) return k;
+  const double aspect = double(width) / double(height);
+  const std::size_t columns =
+      std::clamp<std::size_t>(std::size_t(std::ceil(std::sqrt(double(strata) * aspect))), 1, std::size_t(width));
+  const std::size_t rows = (strata + columns - 1) / columns;
+  const std::size_t x = std::size_t((double(k % columns) + 0.5) * double(width) / double(columns));
+  const std::size_t y = std::size_t((double(k / columns) + 0.5) * double(height) / double(rows));
+  return std::min(y, std::size_t(height) - 1) * std::size_t(width) + std::min(x, std::size_t(width) - 1);
+}
+
 Ray camera_ray(const Scene& scene, const Camera& camera, std::size_t i, std::size_t n, std::uint64_t seed) {
   const std::size_t pixels = std::size_t(scene.width) * std::size_t(scene.height);
   // Fewer rays than pixels: spread them evenly over the film; more: cycle.
   // Either way ray i + strata lands on the same pixel with a new sample.
   const std::size_t strata = std::min(n, pixels);
-  const std::size_t pixel = std::size_t(double(i % strata) * double(pixels) / double(strata));
+  const std::size_t pixel = stratum_pixel(i % strata, strata, scene.width, scene.height);
   Rng rng(seed, pixel, i / strata);
   const float x = float(pixel % std::size_t(scene.width)) + rng.uniform();
   const float y = float(pixel / std::size_t(scene.width)) + rng.uniform();
