@@ -1,7 +1,13 @@
 // The one interface through which the renderer makes every visibility query
-// (camera, bounce and shadow rays). Accelerators know triangles, not materials.
+// (camera, bounce and shadow rays), and what reports need of any accelerator.
+// Accelerators know triangles, not materials. The hot path reaches a concrete
+// accelerator through visit_accelerator (dispatch.h), not through this
+// interface, where that pays.
 #pragma once
 
+#include <nlohmann/json_fwd.hpp>
+
+#include <cstdint>
 #include <optional>
 #include <string_view>
 
@@ -9,6 +15,11 @@
 #include "triangle.h"
 
 namespace kappa {
+
+class CellLayout;
+
+/// Every accelerator Kappa has: what visit_accelerator (dispatch.h) switches on.
+enum class AccelKind { naive, grid, embree };
 
 class Accelerator {
  public:
@@ -21,6 +32,18 @@ class Accelerator {
   virtual bool any_hit(const Ray& ray) const = 0;
 
   virtual std::string_view name() const = 0;
+  virtual AccelKind kind() const = 0;
+
+  /// Bytes of the structure built beside the scene's triangles (0 for naive).
+  virtual std::uint64_t bytes() const = 0;
+  /// Seconds its build took.
+  virtual double build_s() const = 0;
+  /// Its own section of the report (keys in stats/README.md), or null for an
+  /// accelerator that has none; the model's predictions are added by stats/.
+  virtual nlohmann::ordered_json report_section() const;
+  /// The cells of a cell-based accelerator (what statistics count), or
+  /// nullptr for one without cells.
+  virtual const CellLayout* cells() const { return nullptr; }
 };
 
 }  // namespace kappa

@@ -35,12 +35,13 @@ class EmbreeAccelerator final : public Accelerator {
   std::optional<Hit> closest_hit(const Ray& ray) const override;
   bool any_hit(const Ray& ray) const override;
   std::string_view name() const override { return "embree"; }
+  AccelKind kind() const override { return AccelKind::embree; }
 
   /// Bytes Embree holds for this accelerator after the build (its copy of
   /// the vertices and indices plus the BVH), from its memory monitor.
-  std::uint64_t bytes() const { return std::uint64_t(m_bytes.load()); }
+  std::uint64_t bytes() const override { return std::uint64_t(m_bytes.load()); }
   /// Wall-clock seconds of the build (copy + rtcCommitScene).
-  double build_s() const { return m_build_s; }
+  double build_s() const override { return m_build_s; }
   /// Zero-area or non-finite triangles kept out of the BVH (never hit).
   std::uint64_t degenerate() const { return m_degenerate; }
 

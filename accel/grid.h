@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "accel.h"
+#include "cell_layout.h"
 #include "grid_resolution.h"
 
 namespace kappa {
@@ -61,27 +62,7 @@ struct GridInfo {
   double build_s = 0;
 };
 
-/// How far a walk goes: to the closest hit, to any hit, or along the whole
-/// chord (the paper's lines and segments, for statistics).
-enum class GridWalk { closest, any, whole };
-
-/// What one walk did, counted in registers and handed to the recorder once
-/// at the end.
-struct WalkCounts {
-  std::uint64_t cells = 0;  ///< cells visited
-  std::uint64_t refs = 0;   ///< sum of Theta_i over them (before mailboxing)
-  std::uint64_t tests = 0;  ///< triangle tests made
-  std::uint64_t skips = 0;  ///< tests the mailbox avoided
-  /// The model's cells for the walked segment, 1 + sum_a |d_a| len / l_a
-  /// (seed paper eq 24 per axis) less 1/2 for each end on the grid box, over
-  /// the part of [tmin, end] inside the grid, where end is the closest hit
-  /// for closest-hit walks and tmax otherwise (an any-hit walk's stop is not
-  /// known: an upper bound); 0 if that part is empty.
-  double predicted_cells = 0;
-};
-
-
-class UniformGrid final : public Accelerator {
+class UniformGrid final : public Accelerator, public CellLayout {
  public:
   /// Throws std::invalid_argument if the grid would exceed options.max_bytes
   /// or 2^32 - 1 cells or references.
@@ -90,9 +71,25 @@ class UniformGrid final : public Accelerator {
   std::optional<Hit> closest_hit(const Ray& ray) const override;
   bool any_hit(const Ray& ray) const override;
   std::string_view name() const override { return "grid"; }
+  AccelKind kind() const override { return AccelKind::grid; }
+  std::uint64_t bytes() const override { return m_info.bytes; }
+  double build_s() const override { return m_info.build_s; }
+  /// The report's "grid" section: res, N_c, N, cell_size, build_s, bytes,
+  /// theta_tot, theta_avg, max_multiplicity, empty_fraction, degenerate.
+  nlohmann::ordered_json report_section() const override;
+  const CellLayout* cells() const override { return this; }
 
-  /// The same queries, reporting each visited cell, triangle test, mailbox
-  /// skip and hit to `recorder` (see grid_traverse.h, stats/counters.h).
+  // CellLayout: one level of equal cells, indexed x fastest, then y, then z.
+  std::uint64_t cell_count() const override { return m_info.resolution.cells(); }
+  std::vector<std::uint32_t> occupancies() const override;
+  CellBox cell_box(std::uint64_t i) const override;
+  int cell_level(std::uint64_t) const override { return 0; }
+  CellBox bounds() const override { return {m_info.lo, m_info.hi}; }
+  std::optional<Vec3d> uniform_cell_size() const override { return m_info.cell_size; }
+  std::string resolution_text() const override { return m_info.resolution.to_string(); }
+
+  /// The same queries, reporting what the walk does to `recorder` (the
+  /// protocol of recorder.h; the walk is in grid_traverse.h).
   template <class Recorder>
   std::optional<Hit> closest_hit(const Ray& ray, Recorder& recorder) const;
   template <class Recorder>

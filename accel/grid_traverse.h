@@ -1,4 +1,5 @@
-// The grid walk, templated on what it records (stats/counters.h): the
+// The grid walk, templated on what it records (the protocol of recorder.h,
+// which stats/counters.h implements): the
 // renderer's hot path instantiates it with a recorder whose methods are empty,
 // so statistics that are off cost nothing; `kappa cast` and stats-on renders
 // instantiate it with per-cell counters. Included by grid.cpp and by code that
@@ -11,21 +12,9 @@
 #include <type_traits>
 
 #include "grid.h"
+#include "recorder.h"
 
 namespace kappa {
-
-/// A recorder that records nothing: every call compiles away, and so do the
-/// walk's counts, which nothing reads.
-///
-/// The recorder interface: cell(index, ix, iy, iz) on entering each cell,
-/// test() before each triangle test and hit() when one finds a (new closest)
-/// hit, all in the cell last entered; finish(counts) once at the end.
-struct NoRecorder {
-  void cell(std::uint64_t, int, int, int) {}
-  void test() {}
-  void hit() {}
-  void finish(const WalkCounts&) {}
-};
 
 namespace detail {
 
@@ -134,31 +123,23 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
   const auto done = [&](bool result) __attribute__((always_inline)) {
     if constexpr (!std::is_same_v<Recorder, NoRecorder>) {
       // Cells visited, from where the walk started and stopped rather than a
-      // counter in the loop: each step moves one index by one, and a walk
-      // that left the grid has one index on its `last` value.
+      // counter in the loop (exact for this walk, which moves one index by
+      // one at each step; a walk that skips or has levels counts per step):
+      // a walk that left the grid has one index on its `last` value.
       const bool left = ix == last[0] || iy == last[1] || iz == last[2];
       counts.cells =
           std::uint64_t(1 + std::abs(ix - cell[0]) + std::abs(iy - cell[1]) + std::abs(iz - cell[2])) - left;
-      // The model's cells for the walked segment: 1 + sum_a |v_a| / l_a
-      // (eq 24 per axis) for a segment placed at random, less 1/2 for each
-      // end that lies on the grid box, which is a grid plane (NOTES: eq 24's
-      // leading 1 is for random segments; a chord through the whole box,
-      // both ends on planes, expects sum_a |v_a| / l_a, eq 22).
       const double ray_end = Mode == GridWalk::closest ? double(best.t) : double(ray.tmax);
-      const double end = std::min(t_out, ray_end);
-      if (end > t_in) {
-        const double len = end - t_in;
-        const int ends_on_box = int(t_in > double(ray.tmin)) + int(t_out < ray_end);
-        counts.predicted_cells = 1.0 - 0.5 * ends_on_box + std::abs(d.x) * len * m_inv_cell.x +
-                                 std::abs(d.y) * len * m_inv_cell.y + std::abs(d.z) * len * m_inv_cell.z;
-      }
-      recorder.finish(counts);
+      recorder.finish(counts, WalkSegment{o, d, double(ray.tmin), t_in, t_out, ray_end});
     }
     return result;
   };
   const double t_end = t1 + margin_t;
   while (true) {
-    recorder.cell(std::uint64_t(c), ix, iy, iz);
+    recorder.cell(std::uint64_t(c), 0, [&] {  // the cell's box, only if the recorder asks
+      const Vec3d lo = g.lo + Vec3d{double(ix), double(iy), double(iz)} * g.cell_size;
+      return CellBox{lo, lo + g.cell_size};
+    });
     // Empty cells (most of them) do nothing more: no offsets, no counts.
     if ((m_occupied[std::size_t(c) >> 6] >> (std::size_t(c) & 63)) & 1) {
       const std::uint32_t begin = m_offsets[std::size_t(c)], end = m_offsets[std::size_t(c) + 1];

@@ -7,8 +7,11 @@
 //   eq 24: expected cells met by a segment placed at random.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <span>
 
+#include "accel/recorder.h"
 #include "accel/triangle.h"
 #include "accel/vec3.h"
 
@@ -32,5 +35,21 @@ double p_tot_lines_eq22(const Vec3d& box, const Vec3d& cell, double N_c);
 /// Expected cells met by a segment of vector v placed at random with respect
 /// to the grid: 1 + sum_a |v_a| / l_a (eq 24 per axis; a segment has D = |v|/2).
 double cells_for_segment(const Vec3d& v, const Vec3d& cell);
+
+/// The model's cells for the part of a ray a walk covered (accel/recorder.h),
+/// in a grid of cells 1/inv_cell: eq 24 per axis, 1 + sum_a |v_a| / l_a for
+/// v the walked segment inside the grid box, less 1/2 for each end that lies
+/// on the grid box, which is a grid plane (NOTES: eq 24's leading 1 is for
+/// random segments; a chord through the whole box, both ends on planes,
+/// expects sum_a |v_a| / l_a, eq 22); 0 if that part is empty. Per ray, in
+/// stats-on renders: inline.
+inline double predicted_cells_eq24(const WalkSegment& s, const Vec3d& inv_cell) {
+  const double end = std::min(s.t_out, s.t_end);
+  if (!(end > s.t_in)) return 0.0;
+  const double len = end - s.t_in;
+  const int ends_on_box = int(s.t_in > s.t_min) + int(s.t_out < s.t_end);
+  return 1.0 - 0.5 * ends_on_box + std::abs(s.d.x) * len * inv_cell.x + std::abs(s.d.y) * len * inv_cell.y +
+         std::abs(s.d.z) * len * inv_cell.z;
+}
 
 }  // namespace kappa

@@ -13,11 +13,23 @@ ClassTotals& ClassTotals::operator+=(const ClassTotals& o) {
   return *this;
 }
 
-CellCounters::CellCounters(const GridResolution& res, bool per_cell) {
-  if (per_cell) m_cells = std::make_shared<CellArrays>(res.cells());
+namespace {
+
+Vec3d inverse(const Vec3d& cell_size) {
+  Vec3d inv;
+  for (int a = 0; a < 3; ++a) (a == 0 ? inv.x : a == 1 ? inv.y : inv.z) = cell_size[a] > 0 ? 1.0 / cell_size[a] : 0.0;
+  return inv;
 }
 
-CellCounters::CellCounters(std::shared_ptr<CellArrays> shared) : m_cells(std::move(shared)) {}
+}  // namespace
+
+CellCounters::CellCounters(std::uint64_t cells, const Vec3d& cell_size, bool per_cell)
+    : m_inv_cell(inverse(cell_size)) {
+  if (per_cell) m_cells = std::make_shared<CellArrays>(cells);
+}
+
+CellCounters::CellCounters(std::shared_ptr<CellArrays> shared, const Vec3d& cell_size)
+    : m_cells(std::move(shared)), m_inv_cell(inverse(cell_size)) {}
 
 namespace {
 
@@ -33,8 +45,6 @@ void add_counts(SplitCounts& a, const SplitCounts& b) {
 void CellCounters::merge(const CellCounters& other) {
   if (m_cells && other.m_cells && m_cells != other.m_cells) {
     add_counts(m_cells->visits, other.m_cells->visits);
-    add_counts(m_cells->tests, other.m_cells->tests);
-    add_counts(m_cells->hits, other.m_cells->hits);
   }
   totals += other.totals;
   m_per_cell_queries += other.m_per_cell_queries;

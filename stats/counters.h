@@ -1,17 +1,18 @@
-// Counters for one class of rays walked through the uniform grid: per cell
-// (visits -> p_i, triangle tests, hits) and in total. A CellCounters is the
-// Recorder of UniformGrid's templated walks (accel/grid_traverse.h): one per
-// thread, merged once at the end. Totals are counted by the walk in
-// registers and added once per ray; per-cell counts are added per cell, into
-// the thread's own arrays or, for sampled paths, into arrays all threads
-// share.
+// Counters for one class of rays walked through a cell-based accelerator:
+// per cell (visits -> p_i) and in total. A CellCounters gives the recorders
+// of the walks' protocol (accel/recorder.h): one per thread, merged once at
+// the end. Totals are counted by the walk in registers and added once per
+// ray; per-cell visits are added per cell, into the thread's own arrays or,
+// for sampled paths, into arrays all threads share.
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <vector>
 
-#include "accel/grid.h"
+#include "accel/recorder.h"
+#include "accel/vec3.h"
+#include "cost_model.h"
 #include "split_counts.h"
 
 namespace kappa {
@@ -33,11 +34,13 @@ struct ClassTotals {
   ClassTotals& operator+=(const ClassTotals& o);
 };
 
-/// Per-cell counts of one class of rays: visits (-> p_i), triangle tests
-/// made in the cell and tests that found a (new closest) hit there.
+/// Per-cell counts of one class of rays: the rays that visited each cell
+/// (-> p_i). Per-cell triangle tests and hits were counted once and read by
+/// nothing; the totals keep them.
 struct CellArrays {
-  explicit CellArrays(std::size_t cells) : visits(cells), tests(cells), hits(cells) {}
-  SplitCounts visits, tests, hits;
+  static constexpr std::size_t kBytesPerCell = SplitCounts::kBytesPerCount;
+  explicit CellArrays(std::size_t cells) : visits(cells) {}
+  SplitCounts visits;
 };
 
 /// How a walk counts per cell: not at all (totals only), into its thread's
@@ -49,23 +52,23 @@ enum class PerCell { no, own, shared };
 
 class CellCounters {
  public:
-  /// Counters for the cells of a grid of resolution `res`, with per-cell
-  /// arrays of their own, or, with `per_cell` false, only totals (per-cell
-  /// arrays refused for memory).
-  explicit CellCounters(const GridResolution& res, bool per_cell = true);
+  /// Counters for `cells` cells of size `cell_size` (the uniform size eq 24
+  /// predicts with; zero for cells of differing sizes, which predicts 0),
+  /// with per-cell arrays of their own, or, with `per_cell` false, only
+  /// totals (per-cell arrays refused for memory).
+  CellCounters(std::uint64_t cells, const Vec3d& cell_size, bool per_cell = true);
   /// Counters whose per-cell counts go to `shared`, which other threads'
   /// counters share (count into it with SharedTally only).
-  explicit CellCounters(std::shared_ptr<CellArrays> shared);
+  CellCounters(std::shared_ptr<CellArrays> shared, const Vec3d& cell_size);
 
   bool per_cell() const { return m_cells != nullptr; }
 
-  /// The recorder of one query (UniformGrid's templated walks): counts in
-  /// locals, added to the totals once at the end. With per-cell counting
-  /// (the choice is a template argument, made per frame or per path, never
-  /// per cell) it also counts per cell: visits, written at every step, are
-  /// kept apart from tests and hits (written only when a triangle is
-  /// tested): on grids of millions of cells the cache lines those writes
-  /// touch are most of what statistics cost.
+  /// The recorder of one query (accel/recorder.h): the walk's counts are
+  /// added to the totals once at the end, with eq 24's prediction from the
+  /// walked segment. With per-cell counting (the choice is a template
+  /// argument, made per frame or per path, never per cell) it also counts
+  /// each cell's visit: on grids of millions of cells the cache lines those
+  /// writes touch are most of what statistics cost.
   template <PerCell Mode>
   class BasicTally {
    public:
@@ -76,26 +79,21 @@ class CellCounters {
     BasicTally(const BasicTally&) = delete;
     BasicTally& operator=(const BasicTally&) = delete;
 
-    void cell(std::uint64_t c, int /*ix*/, int /*iy*/, int /*iz*/) {
-      if constexpr (Mode != PerCell::no) {
-        m_current = c;
-        count(m_cells->visits, c);
-      }
+    template <class BoxFn>
+    void cell(std::uint64_t c, int /*level*/, BoxFn&& /*box*/) {
+      if constexpr (Mode != PerCell::no) count(m_cells->visits, c);
     }
-    void test() {
-      if constexpr (Mode != PerCell::no) count(m_cells->tests, m_current);
-    }
-    void hit() {
-      if constexpr (Mode != PerCell::no) count(m_cells->hits, m_current);
-    }
+    void test() {}
+    void hit() {}
     /// The walk's own counts (kept in registers during the walk).
-    void finish(const WalkCounts& w) {
+    void finish(const WalkCounts& w, const WalkSegment& segment) {
       ClassTotals& t = m_owner.totals;
       t.cells += w.cells;
       t.refs += w.refs;
       t.tests += w.tests;
       t.mailbox_skips += w.skips;
-      t.predicted_fixed += std::uint64_t(w.predicted_cells * 1024.0 + 0.5);  // >= 0: rounds to nearest
+      const double predicted = predicted_cells_eq24(segment, m_owner.m_inv_cell);
+      t.predicted_fixed += std::uint64_t(predicted * 1024.0 + 0.5);  // >= 0: rounds to nearest
     }
 
    private:
@@ -106,7 +104,6 @@ class CellCounters {
 
     CellCounters& m_owner;
     CellArrays* m_cells;
-    std::uint64_t m_current = 0;
   };
   /// Counts per cell into this thread's own arrays.
   using Tally = BasicTally<PerCell::own>;
@@ -123,19 +120,17 @@ class CellCounters {
   /// both share are already one.
   void merge(const CellCounters& other);
 
-  /// Per cell, in cell order: rays that visited it (p_i * rays), triangle
-  /// tests made in it, tests in it that found a (new closest) hit.
+  /// Per cell, in cell order: rays that visited it (p_i * rays).
   std::vector<std::uint64_t> visits() const { return m_cells->visits.all(); }
   /// The visits of cell i, without copying the array.
   std::uint64_t visits_at(std::size_t i) const { return m_cells->visits.at(i); }
-  std::vector<std::uint64_t> tests_in() const { return m_cells->tests.all(); }
-  std::vector<std::uint64_t> hits_in() const { return m_cells->hits.all(); }
 
   ClassTotals totals;
 
  private:
   std::shared_ptr<CellArrays> m_cells;  ///< null: totals only
   std::uint64_t m_per_cell_queries = 0;
+  Vec3d m_inv_cell;  ///< 1 / cell size per axis, for eq 24 (0 where the size is not uniform)
 };
 
 }  // namespace kappa

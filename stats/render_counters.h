@@ -33,14 +33,19 @@ inline SharedCellArrays make_shared_cell_arrays(std::size_t cells) {
 
 /// One thread's counters for a frame.
 struct RenderCounters {
-  /// Per-cell arrays of this thread's own (or totals only, if `per_cell` is false).
-  RenderCounters(const GridResolution& res, bool per_cell)
-      : classes{CellCounters(res, per_cell), CellCounters(res, per_cell), CellCounters(res, per_cell),
-                CellCounters(res, per_cell), CellCounters(res, per_cell)} {}
+  /// Per-cell arrays of this thread's own over `cells` cells of size
+  /// `cell_size` (or totals only, if `per_cell` is false).
+  RenderCounters(std::uint64_t cells, const Vec3d& cell_size, bool per_cell)
+      : classes{CellCounters(cells, cell_size, per_cell), CellCounters(cells, cell_size, per_cell),
+                CellCounters(cells, cell_size, per_cell), CellCounters(cells, cell_size, per_cell),
+                CellCounters(cells, cell_size, per_cell)} {}
   /// Per-cell counts into `shared`, with every other thread.
-  explicit RenderCounters(const SharedCellArrays& shared)
-      : classes{CellCounters(shared[0]), CellCounters(shared[1]), CellCounters(shared[2]), CellCounters(shared[3]),
-                CellCounters(shared[4])} {}
+  RenderCounters(const SharedCellArrays& shared, const Vec3d& cell_size)
+      : classes{CellCounters(shared[0], cell_size), CellCounters(shared[1], cell_size),
+                CellCounters(shared[2], cell_size), CellCounters(shared[3], cell_size),
+                CellCounters(shared[4], cell_size)} {}
+  /// Totals only, for an accelerator without cells.
+  RenderCounters() : RenderCounters(0, Vec3d{}, false) {}
 
   std::array<CellCounters, kRenderClasses> classes;
   /// Sampled traversal time: every 64th query of a class is timed and counts 64 times.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "accel/cell_layout.h"
 #include "cost_model.h"
 
 namespace kappa {
@@ -11,28 +12,24 @@ nlohmann::ordered_json number_or_null(std::optional<double> v) {
   return *v;
 }
 
-nlohmann::ordered_json grid_section(const UniformGrid& grid, std::span<const Triangle> triangles) {
-  const GridInfo& g = grid.info();
-  const double cells = double(g.resolution.cells());
+nlohmann::ordered_json accel_section(const Accelerator& accel, std::span<const Triangle> triangles) {
+  nlohmann::ordered_json own = accel.report_section();
+  const CellLayout* cells = accel.cells();
+  const std::optional<Vec3d> size = cells ? cells->uniform_cell_size() : std::nullopt;
+  if (!own.is_object() || !size || !own.contains("theta_tot")) return own;
   nlohmann::ordered_json j;
-  j["res"] = {g.resolution.nx, g.resolution.ny, g.resolution.nz};
-  j["N_c"] = g.resolution.cells();
-  j["N"] = g.N;
-  j["cell_size"] = {g.cell_size.x, g.cell_size.y, g.cell_size.z};
-  j["build_s"] = g.build_s;
-  j["bytes"] = g.bytes;
-  j["theta_tot"] = g.theta_tot;
-  j["theta_tot_eq19"] = number_or_null(theta_tot_eq19(triangles, g.cell_size));
-  j["theta_tot_eq21"] = number_or_null(theta_tot_eq21(triangles, g.cell_size));
-  j["theta_avg"] = double(g.theta_tot) / cells;
-  j["max_multiplicity"] = g.max_occupancy;
-  j["empty_fraction"] = double(g.empty_cells) / cells;
-  j["degenerate"] = g.degenerate;
+  for (const auto& [key, value] : own.items()) {
+    j[key] = value;
+    if (key == "theta_tot") {
+      j["theta_tot_eq19"] = number_or_null(theta_tot_eq19(triangles, *size));
+      j["theta_tot_eq21"] = number_or_null(theta_tot_eq21(triangles, *size));
+    }
+  }
   return j;
 }
 
 nlohmann::ordered_json ray_class_section(const CastMeasurement& m, std::optional<double> p_tot_predicted) {
-  return ray_class_section(ClassSummary{m.counters.totals, m.counters.per_cell_queries(), m.collusion,
+  return ray_class_section(ClassSummary{m.counters.totals, m.counters.per_cell_queries(), m.collusion, m.sample,
                                         m.cells_per_ray_predicted, m.time_s},
                            p_tot_predicted);
 }
@@ -59,6 +56,15 @@ nlohmann::ordered_json ray_class_section(const ClassSummary& m, std::optional<do
   j["kappa"] = number_or_null(c.kappa);
   j["kappa_eq25"] = number_or_null(c.kappa_eq25);
   j["per_cell_rays"] = m.per_cell_rays;
+  // The sample alone (every ray when none was left out): inside it,
+  // 1 + (sigma_p / p_avg)(sigma_theta / theta_avg) r is kappa_eq25.
+  const CollusionStats& s = m.sample;
+  j["sample"] = s.N_r == 0 ? nlohmann::ordered_json()
+                           : nlohmann::ordered_json{{"N_s", s.N_r},
+                                                    {"p_avg", number_or_null(s.p_avg)},
+                                                    {"sigma_p", number_or_null(s.sigma_p)},
+                                                    {"r", number_or_null(s.r)},
+                                                    {"kappa_eq25", number_or_null(s.kappa_eq25)}};
   j["time_s"] = m.time_s;
   return j;
 }

@@ -7,24 +7,29 @@
 #include <span>
 #include <string>
 
-#include "accel/grid.h"
+#include "accel/accel.h"
 #include "cast.h"
 
 namespace kappa {
 
-inline constexpr int kReportSchemaVersion = 1;
+/// Bumped once by each change of the report's keys (changelog: stats/README.md).
+inline constexpr int kReportSchemaVersion = 2;
 
 /// A double, or null when it is undefined or not finite (never NaN in JSON).
 nlohmann::ordered_json number_or_null(std::optional<double> v);
 
-/// The "grid" section: resolution, sizes, occupancy measured and predicted (eqs 19, 21).
-nlohmann::ordered_json grid_section(const UniformGrid& grid, std::span<const Triangle> triangles);
+/// The accelerator's own section (Accelerator::report_section, e.g. the
+/// grid's resolution, sizes and occupancy), with the model's Theta_tot by eqs
+/// 19 and 21 after theta_tot when its cells have one size; null for an
+/// accelerator without a section.
+nlohmann::ordered_json accel_section(const Accelerator& accel, std::span<const Triangle> triangles);
 
 /// What one entry of the "rays" section reports about a class of rays.
 struct ClassSummary {
   ClassTotals totals;
   std::uint64_t per_cell_rays = 0;  ///< rays counted per cell (all of them unless sampled)
   CollusionStats collusion;
+  CollusionStats sample;  ///< the per-cell sample alone; sample.N_r = 0 without one
   double cells_per_ray_predicted = 0;
   double time_s = 0;
 };

@@ -15,6 +15,9 @@ namespace kappa {
 /// instead of 8.
 class SplitCounts {
  public:
+  /// Memory per counter: a low word and its carry word.
+  static constexpr std::size_t kBytesPerCount = 2 * sizeof(std::uint32_t);
+
   SplitCounts() = default;
   explicit SplitCounts(std::size_t n) : m_lo(n), m_hi(n) {}
   void increment(std::size_t i) {

@@ -6,9 +6,11 @@
 #include <chrono>
 #include <cstdio>
 #include <optional>
+#include <type_traits>
 
 #include "accel/factory.h"
-#include "accel/grid.h"
+#include "accel/cell_layout.h"
+#include "accel/dispatch.h"
 #include "accel/thread_limit.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/render/ray_sets.h"
@@ -33,23 +35,24 @@ int run_cast(const CastOptions& options) {
   for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", printable_line(w).c_str());
 
   const auto accel = make_accelerator(options.accel, scene.triangles, options.build);
-  const auto* grid = dynamic_cast<const UniformGrid*>(accel.get());
+  const CellLayout* cells = accel->cells();
+  const std::optional<Vec3d> cell_size = cells ? cells->uniform_cell_size() : std::nullopt;
 
-  // The rays: the paper's synthetic distributions through the grid's box,
+  // The rays: the paper's synthetic distributions through the cells' box,
   // or the renderer's own from the camera.
   std::vector<Ray> rays;
   GridWalk walk = GridWalk::whole;
   std::optional<double> p_tot_predicted;
   double length = options.length;
   Vec3d lo(scene.bounds().lo), hi(scene.bounds().hi);
-  if (grid) lo = grid->info().lo, hi = grid->info().hi;
+  if (cells) lo = cells->bounds().lo, hi = cells->bounds().hi;
   if (options.length > 0 && options.rays != "segments")
     std::fprintf(stderr, "kappa: warning: --length applies to --rays segments only; ignored\n");
   if (options.rays == "lines") {
     rays = uniform_lines(lo, hi, options.n, options.seed);
   } else if (options.rays == "segments") {
     if (!(length > 0)) {
-      const Vec3d l = grid ? grid->info().cell_size : (hi - lo) / 16.0;
+      const Vec3d l = cell_size.value_or((hi - lo) / 16.0);
       length = 2.0 * (l.x + l.y + l.z) / 3.0;  // two mean cell widths
     }
     if (length >= max_component(hi - lo))
@@ -71,31 +74,33 @@ int run_cast(const CastOptions& options) {
                     {"threads", active_threads()}};
   if (options.rays == "segments") report["cast"]["length"] = length;
 
-  nlohmann::ordered_json ray_section;
-  if (grid) {
-    const CastMeasurement m = cast_with_counters(*grid, rays, walk, options.build.max_bytes());
-    add_stats_block(report, m.counters.per_cell(), std::nullopt, m.stats_note);
-    if (!m.stats_note.empty()) std::fprintf(stderr, "kappa: warning: %s\n", m.stats_note.c_str());
-    if (options.rays == "lines")
-      p_tot_predicted = p_tot_lines_eq22(hi - lo, grid->info().cell_size, double(grid->info().resolution.cells()));
-    report["grid"] = grid_section(*grid, scene.triangles);
-    ray_section = ray_class_section(m, p_tot_predicted);
-  } else {
-    // Other accelerators: only what applies (counts, hits, time).
-    std::atomic<std::uint64_t> hits{0};
-    const auto start = std::chrono::steady_clock::now();
-    tbb::parallel_for(std::size_t(0), rays.size(), [&](std::size_t i) {
-      const bool hit = walk == GridWalk::any ? accel->any_hit(rays[i]) : accel->closest_hit(rays[i]).has_value();
-      hits.fetch_add(hit, std::memory_order_relaxed);
-    });
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    ray_section = any_accel_class_section(rays.size(), hits, s);
-  }
+  nlohmann::ordered_json ray_section = visit_accelerator(*accel, [&](const auto& a) {
+    using A = std::decay_t<decltype(a)>;
+    if constexpr (CellWalker<A>) {
+      const CastMeasurement m = cast_with_counters(a, rays, walk, options.build.max_bytes());
+      add_stats_block(report, m.counters.per_cell(), m.cell_sample, m.stats_note);
+      if (!m.stats_note.empty()) std::fprintf(stderr, "kappa: warning: %s\n", m.stats_note.c_str());
+      if (options.rays == "lines" && cell_size)
+        p_tot_predicted = p_tot_lines_eq22(hi - lo, *cell_size, double(cells->cell_count()));
+      report[std::string(a.name())] = accel_section(a, scene.triangles);
+      return ray_class_section(m, p_tot_predicted);
+    } else {
+      // Accelerators without cells: only what applies (counts, hits, time).
+      std::atomic<std::uint64_t> hits{0};
+      const auto start = std::chrono::steady_clock::now();
+      tbb::parallel_for(std::size_t(0), rays.size(), [&](std::size_t i) {
+        const bool hit = walk == GridWalk::any ? a.any_hit(rays[i]) : a.closest_hit(rays[i]).has_value();
+        hits.fetch_add(hit, std::memory_order_relaxed);
+      });
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return any_accel_class_section(rays.size(), hits, s);
+    }
+  });
   report["rays"] = {{options.rays, ray_section}};
   report["cost"] = nullptr;  // no calibration yet (T0, Ts, Th)
 
   if (!options.quiet) {
-    if (grid) std::fputs(grid_occupancy_line(report["grid"]).c_str(), stdout);
+    if (cells) std::fputs(grid_occupancy_line(report[std::string(accel->name())]).c_str(), stdout);
     std::fputs(stats_table(report).c_str(), stdout);
   }
   if (report_out) {

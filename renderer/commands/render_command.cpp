@@ -10,7 +10,7 @@
 
 #include "accel/byte_size.h"
 #include "accel/factory.h"
-#include "accel/grid.h"
+#include "accel/cell_layout.h"
 #include "accel/thread_limit.h"
 #include "renderer/cli/progress.h"
 #include "renderer/io/atomic_file.h"
@@ -50,9 +50,9 @@ std::filesystem::path output_path(const RenderOptions& options, const Scene& sce
   return dir / (scene.name + ".exr");
 }
 
-std::string grid_resolution_text(const Accelerator& accel) {
-  const auto* grid = dynamic_cast<const UniformGrid*>(&accel);
-  return grid ? grid->info().resolution.to_string() : std::string("none");
+/// The cell structure for the EXR's metadata: "64x32x16", or "none".
+std::string resolution_text(const Accelerator& accel) {
+  return accel.cells() ? accel.cells()->resolution_text() : std::string("none");
 }
 
 }  // namespace
@@ -145,7 +145,7 @@ int run_render(const RenderOptions& options) {
       {"kappa:threads", threads},
       {"kappa:render_time_s", float(result.seconds)},
       {"kappa:accel_build_s", float(build_s)},
-      {"kappa:grid_res", grid_resolution_text(*accel)},
+      {"kappa:grid_res", resolution_text(*accel)},
       {"kappa:rays", std::to_string(result.rays)},
   };
   write_exr(output.temp_path(), film, metadata);
@@ -154,8 +154,7 @@ int run_render(const RenderOptions& options) {
 
   if (cell_map_out && result.counters) {
     if (result.counters->classes[0].per_cell()) {
-      const auto* grid = dynamic_cast<const UniformGrid*>(accel.get());
-      write_cell_map(*cell_map_out, *grid, *result.counters, options.cell_map_axis[0] - 'x');
+      write_cell_map(*cell_map_out, *accel->cells(), *result.counters, options.cell_map_axis[0] - 'x');
     } else {
       std::fprintf(stderr, "kappa: warning: --cell-map skipped: per-cell statistics were refused for this frame\n");
     }
@@ -165,12 +164,13 @@ int run_render(const RenderOptions& options) {
   if (!result.stats_note.empty()) std::fprintf(stderr, "kappa: warning: %s\n", result.stats_note.c_str());
 
   if (!options.quiet) {
-    if (const auto* grid = dynamic_cast<const UniformGrid*>(accel.get())) {
-      const GridInfo& g = grid->info();
-      std::fprintf(stderr, "kappa: grid %s, N_c %llu, N %llu, theta_tot %llu, %s, built in %.3f s\n",
-                   g.resolution.to_string().c_str(), static_cast<unsigned long long>(g.resolution.cells()),
-                   static_cast<unsigned long long>(g.N), static_cast<unsigned long long>(g.theta_tot),
-                   byte_size(g.bytes).c_str(), g.build_s);
+    if (const CellLayout* cells = accel->cells()) {
+      const nlohmann::ordered_json& own = report[std::string(accel->name())];
+      std::fprintf(stderr, "kappa: %s %s, N_c %llu, N %s, theta_tot %s, %s, built in %.3f s\n",
+                   std::string(accel->name()).c_str(), cells->resolution_text().c_str(),
+                   static_cast<unsigned long long>(cells->cell_count()), own.value("N", nlohmann::ordered_json()).dump().c_str(),
+                   own.value("theta_tot", nlohmann::ordered_json()).dump().c_str(), byte_size(accel->bytes()).c_str(),
+                   accel->build_s());
     }
     std::fprintf(stderr, "kappa: %s %dx%d, %d spp, %s, %d threads: %.2f s, %llu rays, %.3g Mrays/s -> %s\n",
                  scene.name.c_str(), scene.width, scene.height, options.spp, std::string(accel->name()).c_str(), threads,

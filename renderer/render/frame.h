@@ -3,14 +3,13 @@
 // query choice (render_counting.h, tile_loop.h) and the report share them.
 #pragma once
 
-#include <algorithm>
-#include <bit>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
 
 #include "renderer/render/film.h"
+#include "stats/per_cell_budget.h"
 #include "stats/render_counters.h"
 
 namespace kappa {
@@ -27,36 +26,6 @@ struct RenderSettings {
   /// auto_cell_sample); per-class totals always count every ray.
   std::uint64_t cell_sample = 0;
 };
-
-/// Grids up to this many cells keep every path's per-cell counts by default.
-inline constexpr std::uint64_t kFullCellCountLimit = std::uint64_t(1) << 16;
-/// On larger grids, about 1 path in N_c / kCellsPerSampledPath is counted,
-/// but at least 1 in kMinAutoCellSample and never fewer than 1 in
-/// kMaxAutoCellSample.
-inline constexpr std::uint64_t kCellsPerSampledPath = 8192;
-inline constexpr std::uint64_t kMinAutoCellSample = 64;
-inline constexpr std::uint64_t kMaxAutoCellSample = 1024;
-
-/// --cell-sample auto. On a small grid the per-cell arrays stay in cache and
-/// counting every path costs little. On a larger one each counted cell is an
-/// atomic increment into arrays the threads share (1 in 8 paths on 118 k
-/// cells cost 13 %, 1 in 64 cost 5 %), and on millions of cells a cache miss
-/// as well, so the rate falls as N_c grows: 1 path in N_c / 8192 rounded
-/// down to a power of two, within [64, 1024] (Sponza's 2.1 M cells: 1 in
-/// 256). stats/README.md gives what it costs and how near the estimates are.
-inline std::uint64_t auto_cell_sample(std::uint64_t cells) {
-  if (cells <= kFullCellCountLimit) return 1;
-  return std::clamp(std::bit_floor(cells / kCellsPerSampledPath), kMinAutoCellSample, kMaxAutoCellSample);
-}
-
-/// Memory for per-cell statistics on a grid of `cells` cells with `copies`
-/// sets of per-cell arrays (one per thread when every path is counted, one
-/// shared when paths are sampled): per set and class 64-bit visits, tests and
-/// hits; while the report or the cell map is made, Theta_i (32-bit) and two
-/// 64-bit arrays of visits.
-inline std::uint64_t per_cell_stats_bytes(std::uint64_t cells, std::uint64_t copies) {
-  return cells * ((8 + 8 + 8) * kRenderClasses * copies + 4 + 8 + 8);
-}
 
 struct RenderResult {
   double seconds = 0;

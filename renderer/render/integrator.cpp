@@ -1,27 +1,27 @@
 #include "renderer/render/integrator.h"
 
 #include <chrono>
+#include <type_traits>
 
-#include "renderer/render/queries.h"
-#include "renderer/render/tile_loop.h"
-#ifndef KAPPA_NO_STATS
-#include "renderer/render/render_counting.h"
-#endif
+#include "accel/dispatch.h"
+#include "renderer/render/frames.h"
 
 namespace kappa {
 
 RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSettings& settings, Film& film,
                     const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
-  RenderResult result;
-#ifndef KAPPA_NO_STATS  // a build without statistics has no trace of them here (render_counting.cpp)
-  if (const auto* grid = dynamic_cast<const UniformGrid*>(&accel); settings.stats && grid)
-    result = render_counting(scene, *grid, settings, film, progress);
-  else if (settings.stats)
-    result = render_counting_classes(scene, accel, settings, film, progress);
-  else
+  // The one per-frame choice: the accelerator's concrete type and the queries.
+  RenderResult result = visit_accelerator(accel, [&](const auto& a) {
+#ifndef KAPPA_NO_STATS  // a build without statistics has no trace of them here
+    using A = std::decay_t<decltype(a)>;
+    if (settings.stats) {
+      if constexpr (CellWalker<A>) return render_counting(scene, a, settings, film, progress);
+      else return render_counting_classes(scene, a, settings, film, progress);
+    }
 #endif
-    result = render_tiles(scene, settings, film, progress, [&] { return PlainQueries{accel}; });
+    return render_plain(scene, a, settings, film, progress);
+  });
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

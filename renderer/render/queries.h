@@ -1,6 +1,9 @@
-// How the path tracer asks its visibility queries, chosen once per frame:
-// PlainQueries calls the accelerator (a virtual call, nothing counted but
-// the ray total); CountingQueries walks the grid with per-class counters.
+// How the path tracer asks its visibility queries, chosen once per frame
+// (integrator.cpp, through visit_accelerator): PlainQueries calls the
+// accelerator as its concrete type (the grid directly, naive and Embree
+// through the interface), nothing counted but the ray total;
+// CountingQueries walks a cell-based accelerator with per-class counters;
+// ClassQueries counts what applies to any accelerator.
 #pragma once
 
 #include <algorithm>
@@ -10,7 +13,7 @@
 #include <optional>
 
 #include "accel/accel.h"
-#include "accel/grid_traverse.h"
+#include "accel/hash.h"
 #include "renderer/render/sampling.h"
 #include "stats/cost_model.h"
 #include "stats/render_counters.h"
@@ -22,8 +25,9 @@ struct QueryWork {
   std::uint64_t cells = 0, tests = 0;
 };
 
+template <class A>
 struct PlainQueries {
-  const Accelerator& accel;
+  const A& accel;
   std::uint64_t rays = 0;
 
   QueryWork work() const { return {}; }
@@ -129,15 +133,15 @@ struct CellSampling {
 /// picks, per cell: into each thread's own arrays (SampledMode own, for
 /// counting every path) or into arrays the threads share (shared, for
 /// sampled paths). The mode is chosen once per frame.
-template <PerCell SampledMode>
+template <class Walker, PerCell SampledMode>
 class CountingQueries {
   static_assert(SampledMode != PerCell::no);
 
  public:
   /// Per-cell counts are kept if `counters` has per-cell arrays, for the
   /// paths `sampling` picks.
-  CountingQueries(const UniformGrid& grid, RenderCounters& counters, CellSampling sampling = {})
-      : m_grid(grid), m_counters(counters), m_sampling(sampling), m_per_cell(counters.classes[0].per_cell()) {}
+  CountingQueries(const Walker& walker, RenderCounters& counters, CellSampling sampling = {})
+      : m_walker(walker), m_counters(counters), m_sampling(sampling), m_per_cell(counters.classes[0].per_cell()) {}
 
   /// Chooses, once per path, whether its rays are counted per cell.
   void begin_path(std::uint64_t pixel, std::uint64_t sample) {
@@ -156,11 +160,11 @@ class CountingQueries {
   }
 
   std::optional<Hit> closest(const Ray& r, int depth) {
-    return counted<std::optional<Hit>>(class_of_depth(depth), [&](auto& tally) { return m_grid.closest_hit(r, tally); });
+    return counted<std::optional<Hit>>(class_of_depth(depth), [&](auto& tally) { return m_walker.closest_hit(r, tally); });
   }
 
   bool shadow(const Ray& r) {
-    return counted<bool>(kShadow, [&](auto& tally) { return m_grid.any_hit(r, tally); });
+    return counted<bool>(kShadow, [&](auto& tally) { return m_walker.any_hit(r, tally); });
   }
 
  private:
@@ -191,7 +195,7 @@ class CountingQueries {
     return walk(tally);
   }
 
-  const UniformGrid& m_grid;
+  const Walker& m_walker;
   RenderCounters& m_counters;
   SampledClock m_clock{m_counters};
   CellSampling m_sampling;

@@ -5,16 +5,10 @@
 #include <cstdint>
 #include <numbers>
 
+#include "accel/hash.h"
 #include "accel/vec3.h"
 
 namespace kappa {
-
-/// SplitMix64 finalizer: a bijective 64-bit mix, used to derive stream keys.
-constexpr std::uint64_t mix64(std::uint64_t z) {
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
 
 /// PCG32 (O'Neill 2014): small state, good statistics, cheap to seed per sample.
 class Rng {

@@ -1,6 +1,6 @@
 #include "renderer/report/render_report.h"
 
-#include "accel/grid.h"
+#include "accel/cell_layout.h"
 #include "renderer/report/report_sections.h"
 #include "stats/cast.h"
 #include "stats/report.h"
@@ -19,6 +19,7 @@ ClassSummary summary(const ClassTotals& totals, std::uint64_t per_cell_rays, std
   // Without per-cell counts (empty visits): Theta's moments and what the
   // totals give; what needs p_i is undefined.
   m.collusion = collusion_sampled(visits, theta, visits.empty() ? 0 : per_cell_rays, rays, totals.cells, totals.refs);
+  if (!visits.empty()) m.sample = collusion(visits, theta, per_cell_rays);
   m.cells_per_ray_predicted = rays > 0 ? totals.predicted_cells() / double(rays) : 0.0;
   m.time_s = seconds;
   return m;
@@ -37,12 +38,13 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
                  {"time_s", result.seconds},
                  {"rays", result.rays},
                  {"mrays_per_s", result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0}};
-  const auto* grid = dynamic_cast<const UniformGrid*>(&accel);
-  if (grid) j["grid"] = grid_section(*grid, scene.triangles);
+  if (nlohmann::ordered_json section = accel_section(accel, scene.triangles); !section.is_null())
+    j[std::string(accel.name())] = std::move(section);
+  const CellLayout* cells = accel.cells();
   nlohmann::ordered_json rays = nlohmann::ordered_json::object();
-  if (grid && result.counters) {
+  if (cells && result.counters) {
     const RenderCounters& rc = *result.counters;
-    const std::vector<std::uint32_t> theta = occupancies(*grid);
+    const std::vector<std::uint32_t> theta = cells->occupancies();
     const bool per_cell = rc.classes[0].per_cell();
     std::vector<std::uint64_t> visits, all_visits(per_cell ? theta.size() : 0, 0);
     ClassTotals all;
@@ -82,7 +84,8 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
   }
   j["rays"] = rays;
   j["cost"] = nullptr;  // without a calibration (kappa calibrate) there is no prediction
-  if (calibration && grid && result.counters) {
+  // The calibrated constants are the uniform grid's (kappa calibrate times its walk).
+  if (calibration && accel.kind() == AccelKind::grid && result.counters) {
     // Thread-seconds of traversal: eq 10 per class from its own counts, and
     // the sampled clock of the same queries (which includes the counting).
     double predicted = 0, measured = 0;

