@@ -186,5 +186,41 @@ TEST(CostPictures, NeedStatisticsOnTheGrid) {
   }
 }
 
+/// Inside "sample", eq 25 holds with the class's sigma_theta and the grid's
+/// theta_avg: 1 + (sigma_p / p_avg)(sigma_theta / theta_avg) r = kappa_eq25.
+void expect_sample_reproduces_eq25(const nlohmann::json& c, double theta_avg) {
+  const auto& s = c.at("sample");
+  ASSERT_TRUE(s.is_object());
+  ASSERT_TRUE(s.at("r").is_number());
+  const double eq25 = 1.0 + s.at("sigma_p").get<double>() / s.at("p_avg").get<double>() *
+                                c.at("sigma_theta").get<double>() / theta_avg * s.at("r").get<double>();
+  EXPECT_NEAR(eq25, s.at("kappa_eq25").get<double>(), 1e-12 * eq25);
+}
+
+// Per-thread counters (2 threads x 64^3 cells) that do not fit beside the
+// grid fall back to one shared set counting 1 ray in 64: per-cell estimates
+// from the sample, exact totals.
+TEST(Cast, PerThreadCountersOverTheBudgetFallBackToOneSampledSet) {
+  const std::vector<std::string> args = {"--rays", "lines", "--n", "64000", "--grid-res", "64", "--threads", "2"};
+  const auto full = cast_report(args);
+  const std::uint64_t cells = 64 * 64 * 64;
+  const std::uint64_t shared_set = cells * (8 + 4 + 16);  // stats/per_cell_budget.h, one class
+  const std::uint64_t budget = full.at("grid").at("bytes").get<std::uint64_t>() + shared_set + 1000;
+  std::vector<std::string> tight = args;
+  tight.insert(tight.end(), {"--grid-max-bytes", std::to_string(budget)});
+  const auto sampled = cast_report(tight);
+  EXPECT_TRUE(sampled.at("stats").at("per_cell").get<bool>());
+  EXPECT_EQ(sampled.at("stats").at("cell_sample").get<int>(), 64);
+  EXPECT_NE(sampled.at("stats_note").get<std::string>().find("1 path in 64"), std::string::npos);
+  const auto &a = full.at("rays").at("lines"), &b = sampled.at("rays").at("lines");
+  EXPECT_EQ(a.at("sample").at("N_s").get<int>(), 64000);
+  EXPECT_NEAR(b.at("sample").at("N_s").get<double>(), 1000.0, 150.0);  // 1 in 64 of 64000, binomial
+  for (const char* key : {"kappa", "p_tot", "refs_per_ray"})  // from the totals: exact either way
+    EXPECT_NEAR(a.at(key).get<double>(), b.at(key).get<double>(), 1e-9 * a.at(key).get<double>()) << key;
+  const double theta_avg = full.at("grid").at("theta_avg").get<double>();
+  expect_sample_reproduces_eq25(a, theta_avg);
+  expect_sample_reproduces_eq25(b, theta_avg);
+}
+
 }  // namespace
 }  // namespace kappa

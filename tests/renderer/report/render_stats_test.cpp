@@ -136,7 +136,8 @@ TEST(RenderStats, FlatSceneReportsFiniteNumbers) {
   s.camera = CameraSpec{{0, 0, 3}, {0, 0, 0}, {0, 1, 0}, 60.0f};
   s.width = s.height = 16;
   const auto grid = make_accelerator("grid", s.triangles);
-  ASSERT_EQ(dynamic_cast<const UniformGrid&>(*grid).info().resolution.nz, 1);
+  ASSERT_TRUE(grid->cells());
+  ASSERT_EQ(grid->cells()->resolution_text().substr(grid->cells()->resolution_text().rfind('x')), "x1");  // flat: one layer
   Film film(s.width, s.height, {});
   RenderSettings settings;
   settings.spp = 2;
@@ -171,10 +172,9 @@ TEST(RenderStats, PerCellCountersOverTheBudgetAreRefusedButTotalsStay) {
   // kappa (eq 8) and p_tot come from the totals; what needs p_i per cell is null.
   const auto& camera = report["rays"]["camera"];
   const ClassTotals& t = result.counters->classes[kCamera].totals;
-  const GridInfo& g = dynamic_cast<const UniformGrid&>(*grid).info();
+  const double N_c = double(grid->cells()->cell_count()), theta_tot = report["grid"]["theta_tot"].get<double>();
   ASSERT_TRUE(camera["kappa"].is_number());
-  EXPECT_DOUBLE_EQ(camera["kappa"].get<double>(),
-                   double(g.resolution.cells()) * double(t.refs) / (double(t.cells) * double(g.theta_tot)));
+  EXPECT_DOUBLE_EQ(camera["kappa"].get<double>(), N_c * double(t.refs) / (double(t.cells) * theta_tot));
   EXPECT_TRUE(camera["p_tot"].is_number());
   EXPECT_TRUE(camera["sigma_p"].is_null());
   EXPECT_TRUE(camera["r"].is_null());
@@ -248,6 +248,33 @@ TEST(RenderStats, NonGridAcceleratorsReportWhatApplies) {
   EXPECT_EQ(total, result.rays);
   EXPECT_EQ(report["rays"]["all"]["count"].get<std::uint64_t>(), result.rays);
   expect_finite_numbers(report);
+}
+
+// In sampled mode the top-level sigma_p and r estimate the whole frame's
+// (from thinned counts) while kappa_eq25 is the sample's: "sample" holds the
+// sample's own moments, which reproduce its kappa_eq25 through eq 25.
+TEST(RenderStats, SampleBlockReproducesItsKappaEq25) {
+  const Scene scene = small_cornell();
+  const auto grid = make_accelerator("grid", scene.triangles);
+  for (std::uint64_t every : {std::uint64_t(1), std::uint64_t(8)}) {
+    SCOPED_TRACE(every);
+    Film film(scene.width, scene.height, {});
+    const RenderResult result = render_with(scene, *grid, true, 0, film, std::uint64_t(1) << 32, every, 16);
+    const auto report = render_report(scene, *grid, FrameFacts{32, 32, 16, 2, 0}, result);
+    const double theta_avg = report["grid"]["theta_avg"].get<double>();
+    int checked = 0;
+    for (const auto& [name, c] : report["rays"].items()) {
+      const auto& s = c["sample"];
+      ASSERT_TRUE(s.is_object()) << name;
+      EXPECT_EQ(s["N_s"].get<std::uint64_t>(), c["per_cell_rays"].get<std::uint64_t>()) << name;
+      if (!s["r"].is_number()) continue;
+      const double eq25 = 1.0 + s["sigma_p"].get<double>() / s["p_avg"].get<double>() *
+                                    c["sigma_theta"].get<double>() / theta_avg * s["r"].get<double>();
+      EXPECT_NEAR(eq25, s["kappa_eq25"].get<double>(), 1e-12 * eq25) << name;
+      ++checked;
+    }
+    EXPECT_GE(checked, 4);
+  }
 }
 
 }  // namespace

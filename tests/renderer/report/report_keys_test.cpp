@@ -1,0 +1,127 @@
+// Every key stats/README.md documents for the report is in the reports Kappa
+// writes: read off the README's report block, looked for in a render's and in
+// casts' reports (lines, segments, and one whose per-cell counts were sampled
+// for memory, which carries stats_note).
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "test_util.h"
+
+namespace kappa {
+namespace {
+
+struct DocumentedKeys {
+  std::set<std::string> top;  ///< the report's top-level keys
+  std::set<std::string> all;  ///< every key, at any depth
+};
+
+/// The keys of the ``` block under "## Report" in stats/README.md.
+DocumentedKeys documented_keys() {
+  std::ifstream in(test::source_dir() / "stats" / "README.md");
+  std::string line, block;
+  bool in_section = false, in_block = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("## Report", 0) == 0) in_section = true;
+    else if (in_section && line.rfind("```", 0) == 0) {
+      if (in_block) break;
+      in_block = true;
+    } else if (in_block) {
+      block += line + "\n";
+    }
+  }
+  DocumentedKeys keys;
+  static const std::regex leading(R"(^([a-z_]+(, [a-z_]+)*)  )");
+  static const std::regex name(R"([A-Za-z_][A-Za-z_0-9]*)");
+  std::istringstream lines(block);
+  int depth = 0;
+  while (std::getline(lines, line)) {
+    std::smatch m;
+    if (depth == 0 && std::regex_search(line, m, leading)) {
+      std::istringstream names(m[1].str());
+      for (std::string key; std::getline(names, key, ',');) {
+        key.erase(0, key.find_first_not_of(' '));
+        keys.top.insert(key), keys.all.insert(key);
+      }
+    }
+    // Names inside braces are keys, except what brackets or parentheses
+    // qualify ([nx,ny,nz], (lines only)) and the CLASS placeholder.
+    int skip = 0;
+    std::string word;
+    const auto flush = [&] {
+      if (!word.empty() && depth > 0 && skip == 0 && word != "CLASS") keys.all.insert(word);
+      word.clear();
+    };
+    for (char c : line) {
+      if (std::isalnum(static_cast<unsigned char>(c)) || c == '_') {
+        word += c;
+        continue;
+      }
+      flush();
+      if (c == '{') ++depth;
+      else if (c == '}') --depth;
+      else if (c == '[' || c == '(') ++skip;
+      else if (c == ']' || c == ')') --skip;
+    }
+    flush();
+  }
+  return keys;
+}
+
+void collect(const nlohmann::json& j, std::set<std::string>& into) {
+  if (!j.is_object()) return;
+  for (const auto& [key, value] : j.items()) {
+    into.insert(key);
+    collect(value, into);
+  }
+}
+
+nlohmann::json report_of(std::vector<std::string> args) {
+  test::TempDir tmp;
+  args.insert(args.end(), {"--report", (tmp / "r.json").string(), "--quiet"});
+  const auto r = test::run_kappa(args);
+  EXPECT_EQ(r.exit_code, 0) << r.std_err;
+  return nlohmann::json::parse(test::read_file(tmp / "r.json"));
+}
+
+TEST(ReportKeys, EveryDocumentedKeyIsInTheReports) {
+  const DocumentedKeys documented = documented_keys();
+  ASSERT_GE(documented.top.size(), 10u) << "the README's report block was not found";
+  ASSERT_GE(documented.all.size(), 50u);
+  const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
+  test::TempDir tmp;
+  // A calibration, so that the render's cost section is filled.
+  const auto cal = test::run_kappa({"calibrate", scene, "--n", "200", "--repeat", "1", "--density", "2,32", "--out",
+                                    (tmp / "cal.json").string()});
+  ASSERT_EQ(cal.exit_code, 0) << cal.std_err;
+  const nlohmann::json render = report_of({"render", scene, "--spp", "2", "--width", "32", "--height", "32", "--out",
+                                           (tmp / "x.exr").string(), "--calibration", (tmp / "cal.json").string()});
+  ASSERT_TRUE(render.at("cost").is_object());
+  const nlohmann::json lines = report_of({"cast", scene, "--rays", "lines", "--n", "2000"});
+  const nlohmann::json segments = report_of({"cast", scene, "--rays", "segments", "--n", "2000"});
+  // Per-thread counters of 2 threads over 64^3 cells do not fit: one shared sampled set.
+  const nlohmann::json sampled = report_of({"cast", scene, "--rays", "lines", "--n", "2000", "--grid-res", "64",
+                                            "--threads", "2", "--grid-max-bytes", "9000000"});
+  ASSERT_TRUE(sampled.contains("stats_note"));
+  std::set<std::string> seen;
+  for (const auto* j : {&render, &lines, &segments, &sampled}) collect(*j, seen);
+  for (const auto& key : documented.all) EXPECT_TRUE(seen.count(key)) << key << " is documented but in no report";
+  // Top-level keys: in a render's report and in a cast's (render is null in a
+  // cast, cast absent from a render, stats_note only when there is a note).
+  for (const auto& key : documented.top) {
+    if (key != "cast" && key != "stats_note") EXPECT_TRUE(render.contains(key)) << key << " (render)";
+    if (key != "stats_note") EXPECT_TRUE(lines.contains(key)) << key << " (cast)";
+  }
+  // And nothing undocumented at the top.
+  for (const auto* j : {&render, &lines, &sampled})
+    for (const auto& [key, value] : j->items()) EXPECT_TRUE(documented.top.count(key)) << key << " is not documented";
+}
+
+}  // namespace
+}  // namespace kappa
