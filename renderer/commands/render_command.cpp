@@ -165,7 +165,7 @@ int run_render(const RenderOptions& options) {
 
   if (!options.quiet) {
     if (const CellLayout* cells = accel->cells()) {
-      const nlohmann::ordered_json& own = report[std::string(accel->name())];
+      const nlohmann::ordered_json own = report.value(std::string(accel->name()), nlohmann::ordered_json::object());
       std::fprintf(stderr, "kappa: %s %s, N_c %llu, N %s, theta_tot %s, %s, built in %.3f s\n",
                    std::string(accel->name()).c_str(), cells->resolution_text().c_str(),
                    static_cast<unsigned long long>(cells->cell_count()), own.value("N", nlohmann::ordered_json()).dump().c_str(),
