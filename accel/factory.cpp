@@ -4,6 +4,7 @@
 
 #include "embree.h"
 #include "grid.h"
+#include "input_error.h"
 #include "naive.h"
 
 namespace kappa {
@@ -25,7 +26,7 @@ std::unique_ptr<Accelerator> make_accelerator(std::string_view name, std::span<c
   if (name == "naive") return std::make_unique<NaiveAccelerator>(triangles);
   if (name == "embree") return std::make_unique<EmbreeAccelerator>(triangles);
   if (name == "grid") return std::make_unique<UniformGrid>(triangles, grid_options(options));
-  throw std::invalid_argument("unknown accelerator '" + std::string(name) + "'");
+  throw InputError("unknown accelerator '" + std::string(name) + "'");
 }
 
 }  // namespace kappa

@@ -35,7 +35,7 @@ GridOptions grid_options(const AccelOptions& options);
 std::vector<std::string> accelerator_names();
 
 /// Builds the accelerator called `name` over `triangles` (which must outlive
-/// it). Throws std::invalid_argument for an unknown name or options the
+/// it). Throws InputError for an unknown name or options the
 /// accelerator refuses (e.g. a grid over its memory limit).
 std::unique_ptr<Accelerator> make_accelerator(std::string_view name, std::span<const Triangle> triangles,
                                               const AccelOptions& options = {});

@@ -7,6 +7,13 @@
 #include <cstdint>
 #include <limits>
 
+// Every exact accelerator returns bitwise the same hit because each evaluates
+// the same float expressions the same way: fast math (reassociation,
+// reciprocal tricks, no NaN/inf) would break that silently.
+#ifdef __FAST_MATH__
+#error "Kappa's exact accelerators need IEEE float semantics: build without -ffast-math / -Ofast"
+#endif
+
 namespace kappa {
 
 /// Unit roundoff of float: half the machine epsilon.

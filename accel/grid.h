@@ -64,7 +64,7 @@ struct GridInfo {
 
 class UniformGrid final : public Accelerator, public CellLayout {
  public:
-  /// Throws std::invalid_argument if the grid would exceed options.max_bytes
+  /// Throws InputError if the grid would exceed options.max_bytes
   /// or 2^32 - 1 cells or references.
   UniformGrid(std::span<const Triangle> triangles, const GridOptions& options);
 

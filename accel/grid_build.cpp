@@ -12,7 +12,9 @@
 #include <stdexcept>
 
 #include "byte_size.h"
+#include "check.h"
 #include "grid.h"
+#include "input_error.h"
 #include "triangle_box.h"
 
 namespace kappa {
@@ -57,7 +59,7 @@ std::uint64_t default_grid_max_bytes() {
 
 UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions& options) : m_triangles(triangles) {
   const auto start = std::chrono::steady_clock::now();
-  if (triangles.size() >= std::size_t(kNoTriangle)) throw std::invalid_argument("grid: more than 2^32 - 1 triangles");
+  if (triangles.size() >= std::size_t(kNoTriangle)) throw InputError("grid: more than 2^32 - 1 triangles");
 
   // Bounds of the usable triangles, in double.
   std::vector<TriangleId> usable_ids;
@@ -99,10 +101,10 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
   // Offsets (with the occupancy bits) plus the fill pass's per-cell cursors.
   const std::uint64_t offset_bytes = (cells + 1) * sizeof(std::uint32_t) + (cells + 63) / 64 * sizeof(std::uint64_t);
   if (cells >= std::numeric_limits<std::uint32_t>::max())
-    throw std::invalid_argument("grid: " + m_info.resolution.to_string() + " = " + std::to_string(cells) +
+    throw InputError("grid: " + m_info.resolution.to_string() + " = " + std::to_string(cells) +
                                 " cells, over the 2^32 - 1 a grid can index");
   if (2 * offset_bytes > options.max_bytes)
-    throw std::invalid_argument("grid: " + m_info.resolution.to_string() + " = " + std::to_string(cells) +
+    throw InputError("grid: " + m_info.resolution.to_string() + " = " + std::to_string(cells) +
                                 " cells need " + byte_size(2 * offset_bytes) +
                                 " for cell offsets and build cursors alone, over --grid-max-bytes (" +
                                 byte_size(options.max_bytes) + ")");
@@ -130,7 +132,7 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
   }
   const std::uint64_t bytes = offset_bytes + total * sizeof(TriangleId);
   if (total >= std::numeric_limits<std::uint32_t>::max() || bytes > options.max_bytes)
-    throw std::invalid_argument("grid: " + m_info.resolution.to_string() + " holds " + std::to_string(total) +
+    throw InputError("grid: " + m_info.resolution.to_string() + " holds " + std::to_string(total) +
                                 " triangle references (" + byte_size(bytes) + "), over --grid-max-bytes (" +
                                 byte_size(options.max_bytes) + ") or 2^32 - 1 references");
   m_offsets[cells] = std::uint32_t(total);
@@ -149,6 +151,9 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
     const TriangleId id = usable_ids[k];
     for_each_overlapped_cell(m_info, m_inv_cell, triangles[id], [&](std::uint64_t c) {
       const std::uint32_t slot = std::atomic_ref<std::uint32_t>(cursor[c]).fetch_add(1, std::memory_order_relaxed);
+      // Pass 1 counted exactly the cells pass 2 visits: a slot past the row's
+      // end would write into the next cell's references, or past the array.
+      KAPPA_CHECK_LT(slot, m_offsets[c + 1]);
       m_refs[slot] = id;
     });
   });

@@ -2,7 +2,8 @@
 
 #include <charconv>
 #include <cmath>
-#include <stdexcept>
+
+#include "input_error.h"
 
 namespace kappa {
 
@@ -21,7 +22,7 @@ std::optional<GridResolution> parse_grid_resolution(std::string_view text) {
     int v = 0;
     const auto [p, ec] = std::from_chars(part.data(), part.data() + part.size(), v);
     if (count == 3 || part.empty() || ec != std::errc() || p != part.data() + part.size() || v < 1 || v > kMaxGridAxis)
-      throw std::invalid_argument("--grid-res: '" + std::string(text) + "' is not auto, N or NxNxN with 1 <= N <= " +
+      throw InputError("--grid-res: '" + std::string(text) + "' is not auto, N or NxNxN with 1 <= N <= " +
                                   std::to_string(kMaxGridAxis));
     values[count++] = v;
     if (x == std::string_view::npos) break;
@@ -29,7 +30,7 @@ std::optional<GridResolution> parse_grid_resolution(std::string_view text) {
   }
   if (count == 1) return GridResolution{values[0], values[0], values[0]};
   if (count == 3) return GridResolution{values[0], values[1], values[2]};
-  throw std::invalid_argument("--grid-res: '" + std::string(text) + "' needs 1 or 3 numbers");
+  throw InputError("--grid-res: '" + std::string(text) + "' needs 1 or 3 numbers");
 }
 
 GridResolution choose_resolution(const Vec3d& extent, double target_cells) {

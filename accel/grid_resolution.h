@@ -24,7 +24,7 @@ struct GridResolution {
 inline constexpr int kMaxGridAxis = 1 << 14;
 
 /// Parses "auto" (returns nullopt), "64" (cubic) or "64x32x16". Throws
-/// std::invalid_argument with a one-line reason for anything else.
+/// InputError with a one-line reason for anything else.
 std::optional<GridResolution> parse_grid_resolution(std::string_view text);
 
 /// Cells as close to cubes as the box allows with about `target_cells` cells

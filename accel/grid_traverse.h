@@ -92,7 +92,10 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
   std::int64_t c = 0;
   for (int a = 0; a < 3; ++a) {
     const int n = g.resolution[a];
-    cell[a] = std::clamp(int(std::floor((entry[a] - g.lo[a]) * m_inv_cell[a])), 0, n - 1);
+    // Clamped in double before the conversion: the entry point may lie far
+    // outside the grid (the start margin grows with |origin|), billions of
+    // cells away, which no int holds.
+    cell[a] = int(std::clamp(std::floor((entry[a] - g.lo[a]) * m_inv_cell[a]), 0.0, double(n - 1)));
     c += cell[a] * stride[a];
     if (d[a] > 0) {
       step[a] = 1;

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "accel/input_error.h"
+
 namespace kappa {
 namespace {
 
@@ -43,11 +45,11 @@ bool solve_normal_equations(const double normal[3][4], unsigned free, double x[3
 }  // namespace
 
 Calibration fit_calibration(std::span<const CostSample> samples) {
-  if (samples.size() < 3) throw std::invalid_argument("calibration: at least 3 measurements are needed");
+  if (samples.size() < 3) throw std::runtime_error("calibration: at least 3 measurements are needed");
   for (const CostSample& s : samples)
     if (!(s.seconds_per_ray > 0) || !std::isfinite(s.seconds_per_ray) || !std::isfinite(s.cells_per_ray) ||
         !std::isfinite(s.refs_per_ray))
-      throw std::invalid_argument("calibration: measurement '" + s.label + "' is not a positive finite time");
+      throw std::runtime_error("calibration: measurement '" + s.label + "' is not a positive finite time");
   // Normal equations A^T W A x = A^T W b with rows (1, cells, refs), weights 1/b^2.
   double normal[3][4] = {};
   for (const CostSample& s : samples) {
@@ -68,7 +70,7 @@ Calibration fit_calibration(std::span<const CostSample> samples) {
   };
   double x[3] = {};
   if (!solve_normal_equations(normal, 0b111, x))
-    throw std::invalid_argument("calibration: the measurements do not determine T0, Ts, Th");
+    throw std::runtime_error("calibration: the measurements do not determine T0, Ts, Th");
   // A time cannot be negative: if the free fit makes a constant negative,
   // take the best fit with some constants held at 0 (the non-negative least
   // squares solution, found by trying every subset of the three).
@@ -80,7 +82,7 @@ Calibration fit_calibration(std::span<const CostSample> samples) {
       if (!solve_normal_equations(normal, free, y) || y[0] < 0 || y[1] < 0 || y[2] < 0) continue;
       if (const double r = weighted_residual(y); r < best) best = r, std::copy(y, y + 3, best_x);
     }
-    if (!std::isfinite(best)) throw std::invalid_argument("calibration: no fit with non-negative T0, Ts, Th");
+    if (!std::isfinite(best)) throw std::runtime_error("calibration: no fit with non-negative T0, Ts, Th");
     std::copy(best_x, best_x + 3, x);
   }
   Calibration cal;
@@ -88,7 +90,7 @@ Calibration fit_calibration(std::span<const CostSample> samples) {
   cal.Ts_ns = x[1] * 1e9;
   cal.Th_ns = x[2] * 1e9;
   if (!std::isfinite(cal.T0_ns) || !std::isfinite(cal.Ts_ns) || !std::isfinite(cal.Th_ns))
-    throw std::invalid_argument("calibration: the fit is not finite");
+    throw std::runtime_error("calibration: the fit is not finite");
   cal.samples = samples.size();
   double sum = 0;
   for (const CostSample& s : samples) {
@@ -137,11 +139,11 @@ std::optional<Calibration> load_calibration(const std::filesystem::path& file) {
     c.samples = j.value("samples", std::size_t(0));
     c.rms_relative_error = j.value("rms_relative_error", 0.0);
     c.machine = j.value("machine", std::string());
-    if (!std::isfinite(c.T0_ns) || !std::isfinite(c.Ts_ns) || !std::isfinite(c.Th_ns)) throw std::invalid_argument("");
-    return c;
-  } catch (const std::exception&) {
-    throw std::invalid_argument(file.string() + ": not a Kappa calibration (expected T0_ns, Ts_ns, Th_ns numbers)");
+    if (std::isfinite(c.T0_ns) && std::isfinite(c.Ts_ns) && std::isfinite(c.Th_ns)) return c;
+  } catch (const nlohmann::json::exception&) {
+    // malformed JSON or a missing or mistyped key: refused below
   }
+  throw InputError(file.string() + ": not a Kappa calibration (expected T0_ns, Ts_ns, Th_ns numbers)");
 }
 
 }  // namespace kappa

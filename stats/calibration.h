@@ -37,7 +37,8 @@ struct Calibration {
 /// Least squares fit of seconds = T0 + cells Ts + refs Th over the samples,
 /// each weighted by 1/seconds (relative errors count alike), with no
 /// constant negative (non-negative least squares). Throws
-/// std::invalid_argument with fewer than 3 samples or a singular system.
+/// std::runtime_error (an internal error: the measurements are Kappa's own)
+/// with fewer than 3 samples or a singular system.
 Calibration fit_calibration(std::span<const CostSample> samples);
 
 nlohmann::ordered_json to_json(const Calibration& c, std::span<const CostSample> samples = {});
@@ -46,7 +47,7 @@ nlohmann::ordered_json to_json(const Calibration& c, std::span<const CostSample>
 std::filesystem::path default_calibration_path();
 
 /// Reads a calibration file; nullopt if it does not exist. Throws
-/// std::invalid_argument naming the file if it is malformed.
+/// InputError naming the file if it is malformed.
 std::optional<Calibration> load_calibration(const std::filesystem::path& file);
 
 }  // namespace kappa

@@ -4,10 +4,15 @@
 #include <cmath>
 #include <limits>
 
+#include "accel/check.h"
+
 namespace kappa {
 
 CollusionStats collusion(std::span<const std::uint64_t> visits, std::span<const std::uint32_t> theta,
                          std::uint64_t rays) {
+  // One visit count per cell, or none at all (per-cell counts refused): a
+  // shorter array would be read past its end below.
+  if (!visits.empty()) KAPPA_CHECK_EQ(visits.size(), theta.size());
   CollusionStats s;
   s.N_c = theta.size();
   s.N_r = rays;
@@ -53,6 +58,7 @@ CollusionStats collusion(std::span<const std::uint64_t> visits, std::span<const 
 CollusionStats collusion_sampled(std::span<const std::uint64_t> visits, std::span<const std::uint32_t> theta,
                                  std::uint64_t sample_rays, std::uint64_t rays, std::uint64_t cells,
                                  std::uint64_t refs) {
+  KAPPA_CHECK_LE(sample_rays, rays);
   if (sample_rays >= rays) return collusion(visits, theta, rays);
   // The sample alone, as if it were the whole class: its Theta moments are
   // the grid's, its p moments and covariance are estimates.

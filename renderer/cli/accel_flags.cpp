@@ -6,6 +6,7 @@
 
 #include "accel/factory.h"
 #include "accel/grid_resolution.h"
+#include "accel/input_error.h"
 
 namespace kappa {
 namespace {
@@ -17,7 +18,7 @@ CLI::Validator grid_resolution_validator() {
         try {
           parse_grid_resolution(value);
           return std::string();
-        } catch (const std::invalid_argument& e) {
+        } catch (const InputError& e) {
           std::string reason = e.what();  // drop the "--grid-res: " prefix CLI11 adds again
           return reason.substr(reason.find(": ") + 2);
         }

@@ -152,9 +152,6 @@ std::optional<int> parse_command_line(int argc, char** argv, Command& command) {
 int exit_code_of(const std::function<int()>& run) {
   try {
     return run();
-  } catch (const std::invalid_argument& e) {  // options an accelerator refuses
-    std::fprintf(stderr, "kappa: error: %s\n", printable_line(e.what()).c_str());
-    return 2;
   } catch (const InputError& e) {
     std::fprintf(stderr, "kappa: error: %s\n", printable_line(e.what()).c_str());
     return 2;

@@ -6,7 +6,7 @@
 
 namespace kappa {
 
-/// Throws InputError / std::invalid_argument for bad input; returns the exit code.
+/// Throws InputError for bad input; returns the exit code.
 int run_bench(const BenchOptions& options);
 
 }  // namespace kappa

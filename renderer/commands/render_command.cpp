@@ -99,13 +99,8 @@ int run_render(const RenderOptions& options) {
   if (!options.report.empty()) report_out = std::make_unique<AtomicOutput>(options.report);
   if (!options.cell_map.empty()) cell_map_out = std::make_unique<AtomicOutput>(options.cell_map);
   // The calibration too is read now: a bad file must not cost a finished render.
-  std::optional<Calibration> calibration;
-  try {
-    calibration = load_calibration(options.calibration.empty() ? default_calibration_path()
-                                                               : std::filesystem::path(options.calibration));
-  } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
-  }
+  const std::optional<Calibration> calibration = load_calibration(
+      options.calibration.empty() ? default_calibration_path() : std::filesystem::path(options.calibration));
   if (!calibration && !options.calibration.empty())
     throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
 

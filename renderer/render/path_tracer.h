@@ -7,6 +7,7 @@
 #include <numbers>
 #include <optional>
 
+#include "accel/check.h"
 #include "renderer/render/frame.h"
 #include "renderer/render/interaction.h"
 #include "renderer/render/lights.h"
@@ -65,6 +66,8 @@ class PathTracer {
           // An emitter too dim to be a light (pmf 0) is reached only by BSDF
           // sampling, which then carries its whole weight.
           const float pmf = m_lights.pmf_of_triangle(hit->triangle);
+          // hit->t is the distance to the emitter only for a unit direction.
+          KAPPA_DCHECK_LT(std::abs(dot(ray.d, ray.d) - 1.0f), 1e-5f);
           const float light_pdf =
               pmf > 0.0f ? pmf * (hit->t * hit->t) / (cos_o * m_lights.area_of_triangle(hit->triangle)) : 0.0f;
           L += beta * mat.emission * power_heuristic(prev_bsdf_pdf, light_pdf);

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
-
+#include "accel/check.h"
+#include "accel/input_error.h"
 #include "renderer/render/camera.h"
 #include "renderer/render/interaction.h"
 #include "renderer/render/lights.h"
@@ -79,13 +79,13 @@ const char* ray_class_name(RayClass c) {
     case RayClass::shadow: return "shadow";
     case RayClass::lines: return "lines";
   }
-  return "?";
+  KAPPA_UNREACHABLE();  // every enumerator is handled above
 }
 
 RayClass parse_ray_class(const std::string& name) {
   for (RayClass c : {RayClass::camera, RayClass::bounce, RayClass::shadow, RayClass::lines})
     if (name == ray_class_name(c)) return c;
-  throw std::invalid_argument("unknown ray class '" + name + "' (expected camera, bounce, shadow, lines)");
+  throw InputError("unknown ray class '" + name + "' (expected camera, bounce, shadow, lines)");
 }
 
 RaySet make_ray_set(RayClass kind, const Scene& scene, const Accelerator& reference, std::size_t n,

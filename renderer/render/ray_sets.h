@@ -17,7 +17,7 @@ enum class RayClass { camera, bounce, shadow, lines };
 
 /// "camera", "bounce", "shadow", "lines".
 const char* ray_class_name(RayClass c);
-/// Throws std::invalid_argument for an unknown name.
+/// Throws InputError for an unknown name.
 RayClass parse_ray_class(const std::string& name);
 
 struct RaySet {

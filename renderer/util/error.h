@@ -1,5 +1,6 @@
-// Errors in user input: a one-line message naming the file (and line), which
-// the command line prints and turns into exit code 2.
+// Errors in user input (InputError, accel/input_error.h): one-line messages
+// naming the file (and line), which the command line prints and turns into
+// exit code 2; and reading the input files they name.
 #pragma once
 
 #include <cstddef>
@@ -8,12 +9,9 @@
 #include <string>
 #include <vector>
 
-namespace kappa {
+#include "accel/input_error.h"
 
-class InputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace kappa {
 
 /// "file: message" or "file:line: message" (line 0 means the whole file).
 std::string located(const std::filesystem::path& file, std::size_t line, const std::string& message);

@@ -4,11 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cfloat>
+#include <limits>
 #include <random>
 
 #include "accel/naive.h"
 #include "accel/triangle_box.h"
 #include "renderer/scene/obj_loader.h"
+#include "accel/input_error.h"
 #include "test_util.h"
 
 namespace kappa {
@@ -28,7 +31,9 @@ void expect_agreement(std::span<const Triangle> tris, const UniformGrid& grid, c
     const bool same = a.has_value() == b.has_value() && occluded_a == occluded_b &&
                       (!a || (a->triangle == b->triangle && std::bit_cast<std::uint32_t>(a->t) ==
                                                                   std::bit_cast<std::uint32_t>(b->t) &&
-                              a->b1 == b->b1 && a->b2 == b->b2));
+                              std::bit_cast<std::uint32_t>(a->b0) == std::bit_cast<std::uint32_t>(b->b0) &&
+                              std::bit_cast<std::uint32_t>(a->b1) == std::bit_cast<std::uint32_t>(b->b1) &&
+                              std::bit_cast<std::uint32_t>(a->b2) == std::bit_cast<std::uint32_t>(b->b2)));
     if (!same && ++mismatches <= 3) {
       ADD_FAILURE() << "ray o=(" << r.o.x << "," << r.o.y << "," << r.o.z << ") d=(" << r.d.x << "," << r.d.y << ","
                     << r.d.z << ") tmin=" << r.tmin << " tmax=" << r.tmax << ": naive "
@@ -268,7 +273,7 @@ TEST(Grid, ResolutionParsingAndChoice) {
   EXPECT_EQ(*parse_grid_resolution("64"), (GridResolution{64, 64, 64}));
   EXPECT_EQ(*parse_grid_resolution("64x32x16"), (GridResolution{64, 32, 16}));
   for (const char* bad : {"", "0", "-4", "64x32", "64x32x16x2", "abc", "4x4xq", "99999"})
-    EXPECT_THROW(parse_grid_resolution(bad), std::invalid_argument) << bad;
+    EXPECT_THROW(parse_grid_resolution(bad), InputError) << bad;
   // Near-cubic cells: a 4:2:1 box with 8000 target cells.
   const GridResolution r = choose_resolution({4, 2, 1}, 8000);
   EXPECT_NEAR(double(r.cells()), 8000.0, 8000.0 * 0.3);
@@ -289,7 +294,7 @@ TEST(Grid, MemoryLimitIsAClearError) {
   try {
     UniformGrid grid(tris, options);
     ADD_FAILURE() << "no error";
-  } catch (const std::invalid_argument& e) {
+  } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("--grid-max-bytes"), std::string::npos) << e.what();
   }
 }
@@ -342,6 +347,40 @@ TEST(Grid, RaysThroughSharedMeshVerticesPickTheSameTriangleAsNaive) {
     SCOPED_TRACE(res.to_string());
     expect_agreement(tris, grid, rays);
   }
+}
+
+// The entry cell of a ray from a far origin, into a grid of thin cells: the
+// walk widens its start by a margin that grows with |origin|, and at 1e12 the
+// entry point lies some 6e10 cells outside the grid, which overflowed an int
+// before being clamped (undefined behaviour; the sanitizer build flags it).
+// Release builds happened to agree with naive anyway: the float triangle test
+// cannot resolve hits from that far (its rounding bound exceeds t), so both
+// miss there; nearer origins hit, and every answer must equal naive's.
+TEST(Grid, FarOriginsIntoThinCellsEnterTheRightCell) {
+  const auto tris = test::random_soup(400, 41, 0.2f);  // in [-1, 1]^3
+  const UniformGrid along_x = make_grid(tris, GridResolution{kMaxGridAxis, 4, 4});
+  const UniformGrid along_y = make_grid(tris, GridResolution{4, kMaxGridAxis, 4});
+  // The case is the one it names: the start margin, in cells, exceeds an int.
+  const double margin_cells = kMarginUlps * double(FLT_EPSILON) * 1e12 / along_x.info().cell_size.x;
+  EXPECT_GT(margin_cells, double(std::numeric_limits<int>::max()));
+  Rays x_rays, y_rays;
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<float> u(-0.8f, 0.8f);
+  for (float far : {1e2f, 1e4f, 1e9f, 1e12f}) {
+    for (int k = 0; k < 50; ++k) {
+      const float a = u(rng), b = u(rng);
+      x_rays.push_back(Ray{{far, a, b}, {-1, 0, 0}});  // entering through the high x face
+      x_rays.push_back(Ray{{-far, a, b}, {1, 0, 0}});  // and the low one
+      y_rays.push_back(Ray{{a, far, b}, {0, -1, 0}});
+      y_rays.push_back(Ray{{a, -far, b}, {0, 1, 0}});
+    }
+  }
+  expect_agreement(tris, along_x, x_rays);
+  expect_agreement(tris, along_y, y_rays);
+  const NaiveAccelerator naive(tris);
+  std::size_t hits = 0;
+  for (const Ray& r : x_rays) hits += naive.closest_hit(r).has_value();
+  EXPECT_GT(hits, 50u);  // the nearer rays do meet the soup
 }
 
 }  // namespace

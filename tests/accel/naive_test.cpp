@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "accel/factory.h"
+#include "accel/input_error.h"
 #include "test_util.h"
 
 namespace kappa {
@@ -63,7 +64,7 @@ TEST(Naive, EmptySceneNeverHits) {
 TEST(Accelerator, FactoryKnowsNaiveAndRejectsUnknownNames) {
   const auto tris = test::random_soup(10, 5, 0.2f);
   EXPECT_EQ(make_accelerator("naive", tris)->name(), "naive");
-  EXPECT_THROW(make_accelerator("bvh4", tris), std::invalid_argument);
+  EXPECT_THROW(make_accelerator("bvh4", tris), InputError);
 }
 
 }  // namespace

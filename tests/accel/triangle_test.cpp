@@ -211,5 +211,17 @@ TEST(Triangle, WatertightFarFromTheOrigin) {
   EXPECT_EQ(escaped, 0u);
 }
 
+// The build evaluates a*b+c as a rounded product then a rounded sum, never
+// as one fused operation: with a = b = 1 + 2^-12, a*b = 1 + 2^-11 + 2^-24
+// rounds to 1 + 2^-11 in float, so adding c = -(1 + 2^-11) gives 0, while an
+// FMA keeps the 2^-24. (-ffp-contract=off; cmake/float_flags.cmake refuses
+// flags that would change this.)
+TEST(FloatFlags, MultiplyAddIsNotFused) {
+  volatile float a = 1.0f + 0x1p-12f, b = 1.0f + 0x1p-12f, c = -(1.0f + 0x1p-11f);
+  const float unfused = a * b + c;
+  EXPECT_EQ(unfused, 0.0f);
+  EXPECT_EQ(std::fma(float(a), float(b), float(c)), 0x1p-24f);  // the two do differ
+}
+
 }  // namespace
 }  // namespace kappa

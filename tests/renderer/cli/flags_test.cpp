@@ -268,5 +268,19 @@ TEST(GridFlags, CalibrateBuildsWithinGridMaxBytesWhenItFits) {
   EXPECT_TRUE(fs::is_regular_file(tmp / "x.json"));
 }
 
+// What is not the input's fault is an internal error: exit 1, one line that
+// says so. One triangle gives every ray set the same cells and references, so
+// the calibration's measurements cannot determine T0, Ts and Th.
+TEST(InternalError, ACalibrationFitItsMeasurementsDoNotDetermineExitsOne) {
+  TempDir tmp;
+  const RunResult r = run_kappa({"calibrate", good_scene(), "--n", "100", "--repeat", "1", "--density", "2", "--out",
+                                 (tmp / "cal.json").string()},
+                                tmp.path());
+  EXPECT_EQ(r.exit_code, 1) << r.std_err;
+  ASSERT_FALSE(r.err_lines().empty());
+  EXPECT_EQ(r.err_lines().back().rfind("kappa: internal error: calibration:", 0), 0u) << r.std_err;
+  EXPECT_FALSE(fs::exists(tmp / "cal.json"));
+}
+
 }  // namespace
 }  // namespace kappa::test

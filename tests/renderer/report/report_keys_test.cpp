@@ -115,8 +115,12 @@ TEST(ReportKeys, EveryDocumentedKeyIsInTheReports) {
   // Top-level keys: in a render's report and in a cast's (render is null in a
   // cast, cast absent from a render, stats_note only when there is a note).
   for (const auto& key : documented.top) {
-    if (key != "cast" && key != "stats_note") EXPECT_TRUE(render.contains(key)) << key << " (render)";
-    if (key != "stats_note") EXPECT_TRUE(lines.contains(key)) << key << " (cast)";
+    if (key != "cast" && key != "stats_note") {
+      EXPECT_TRUE(render.contains(key)) << key << " (render)";
+    }
+    if (key != "stats_note") {
+      EXPECT_TRUE(lines.contains(key)) << key << " (cast)";
+    }
   }
   // And nothing undocumented at the top.
   for (const auto* j : {&render, &lines, &sampled})
