@@ -47,11 +47,12 @@ RunResult run_kappa(const std::vector<std::string>& args, const std::filesystem:
   for (const auto& a : args) cmd += " " + shell_quote(a);
   // In a subshell, so that a failing cd reports into the captured stderr too.
   if (!working_dir.empty()) cmd = "(cd " + shell_quote(working_dir.string()) + " && exec " + cmd + ")";
-  cmd += " </dev/null 2>" + shell_quote((tmp / "stderr").string()) + " >/dev/null";
+  cmd += " </dev/null 2>" + shell_quote((tmp / "stderr").string()) + " >" + shell_quote((tmp / "stdout").string());
   const int status = std::system(cmd.c_str());
   RunResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   r.std_err = read_file(tmp / "stderr");
+  r.std_out = read_file(tmp / "stdout");
   return r;
 }
 

@@ -36,6 +36,7 @@ class TempDir {
 struct RunResult {
   int exit_code = -1;
   std::string std_err;
+  std::string std_out;
   std::vector<std::string> err_lines() const;
 };
 

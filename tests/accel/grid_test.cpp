@@ -220,9 +220,9 @@ TEST(Grid, WallsOnTheBoundingBoxStayInTheirCells) {
 }
 
 TEST(Grid, OccupancyCountsEveryTriangleInEveryCellItTouches) {
-  // A triangle lying exactly in the plane x = 1 of a 2x2x2 grid over [0,2]^3
-  // touches all eight cells' closed boxes? No: it touches the four cells on
-  // either side of x = 1 it overlaps in y and z.
+  // A small triangle lying exactly in the plane x = 1 of a 2x2x2 grid over
+  // [0,2]^3, with y and z in [0.1, 0.4]: it touches the closed boxes of the
+  // two cells on either side of x = 1 at y, z < 1, and no other.
   const std::vector<Triangle> tris = {{{0, 0, 0}, {2, 0, 0}, {0, 2, 2}},   // spans the box diagonal
                                       {{1, 0.1f, 0.1f}, {1, 0.4f, 0.1f}, {1, 0.1f, 0.4f}}};  // on the plane x = 1
   const UniformGrid grid = make_grid(tris, GridResolution{2, 2, 2});
@@ -230,11 +230,20 @@ TEST(Grid, OccupancyCountsEveryTriangleInEveryCellItTouches) {
   for (std::uint64_t c = 0; c < 8; ++c)
     for (TriangleId id : grid.cell(c)) cells_with_second += id == 1;
   EXPECT_EQ(cells_with_second, 2u);  // cells (0,0,0) and (1,0,0), both closed at x = 1
-  EXPECT_EQ(grid.info().theta_tot, [&] {
-    std::uint64_t total = 0;
-    for (std::uint64_t c = 0; c < 8; ++c) total += grid.cell(c).size();
-    return total;
-  }());
+  // Theta_tot against the definition, not against the offsets it is summed
+  // from: the cells each triangle's closed (margin-inflated) box test finds.
+  const GridInfo& g = grid.info();
+  std::uint64_t expected = 0;
+  for (int z = 0; z < 2; ++z)
+    for (int y = 0; y < 2; ++y)
+      for (int x = 0; x < 2; ++x) {
+        const Vec3d lo = g.lo + Vec3d{double(x), double(y), double(z)} * g.cell_size;
+        const Vec3d m{g.margin, g.margin, g.margin};
+        for (const Triangle& t : tris)
+          expected += triangle_overlaps_box(Vec3d(t.v0), Vec3d(t.v1), Vec3d(t.v2), lo - m, lo + g.cell_size + m);
+      }
+  EXPECT_EQ(expected, 8u + 2u);  // the diagonal one, in the plane y = z through the centre (1,1,1), touches all 8
+  EXPECT_EQ(g.theta_tot, expected);
 }
 
 TEST(Grid, CellListsMatchABruteForceOverlapTestInEveryCell) {
@@ -310,12 +319,20 @@ TEST(Grid, EmptyAndAllDegenerateScenesMiss) {
 }
 
 TEST(Grid, NonFiniteRaysMissLikeNaive) {
-  const auto tris = test::random_soup(100, 24);
+  // One large triangle that the finite ray does hit: each non-finite variant
+  // of it must miss, in the grid as in naive.
+  const std::vector<Triangle> tris = {{{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}}};
   const UniformGrid grid = make_grid(tris);
   const NaiveAccelerator naive(tris);
-  for (const Ray& r : {Ray{{NAN, 0, 0}, {1, 0, 0}}, Ray{{0, 0, 0}, {INFINITY, 0, 0}}, Ray{{0, 0, 0}, {0, 0, 0}}}) {
-    EXPECT_EQ(grid.closest_hit(r).has_value(), naive.closest_hit(r).has_value());
-    EXPECT_EQ(grid.any_hit(r), naive.any_hit(r));
+  const Ray finite{{0, 0, -5}, {0, 0, 1}};
+  ASSERT_TRUE(grid.closest_hit(finite));
+  ASSERT_TRUE(naive.closest_hit(finite));
+  for (const Ray& r : {Ray{{NAN, 0, -5}, {0, 0, 1}}, Ray{{0, 0, -INFINITY}, {0, 0, 1}}, Ray{{0, 0, -5}, {0, 0, INFINITY}},
+                       Ray{{0, 0, -5}, {0, 0, 0}}, Ray{{0, 0, -5}, {0, 0, 1}, NAN}, Ray{{0, 0, -5}, {0, 0, 1}, 0, NAN}}) {
+    EXPECT_FALSE(grid.closest_hit(r));
+    EXPECT_FALSE(grid.any_hit(r));
+    EXPECT_FALSE(naive.closest_hit(r));
+    EXPECT_FALSE(naive.any_hit(r));
   }
 }
 

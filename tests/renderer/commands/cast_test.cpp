@@ -105,16 +105,30 @@ namespace {
 
 TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
   test::TempDir tmp;
+  // A calibration of known constants, so that the cost section does not
+  // depend on a file another run may have left beside the binary.
+  test::write_file(tmp / "cal.json", R"({"T0_ns": 20, "Ts_ns": 3, "Th_ns": 7})");
   const auto r = test::run_kappa({"render", cornell(), "--spp", "2", "--width", "24", "--height", "24", "--out",
-                                  (tmp / "x.exr").string(), "--report", (tmp / "x.json").string()});
+                                  (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(), "--calibration",
+                                  (tmp / "cal.json").string()});
   ASSERT_EQ(r.exit_code, 0) << r.std_err;
   const auto j = nlohmann::json::parse(test::read_file(tmp / "x.json"));
   EXPECT_EQ(j.at("render").at("width"), 24);
   EXPECT_EQ(j.at("accel"), "grid");
   for (const char* cls : {"camera", "shadow", "bounce1", "bounce2", "bounce3+", "all"})
     EXPECT_TRUE(j.at("rays").at(cls).at("kappa").is_number()) << cls;
-  // null without a calibration; tools/run.sh may have left one beside the binary.
-  EXPECT_TRUE(j.at("cost").is_null() || j.at("cost").contains("predicted_s"));
+  // eq 10 per class from the class's own counts, summed.
+  const auto& cost = j.at("cost");
+  ASSERT_TRUE(cost.is_object());
+  EXPECT_EQ(cost.at("T0_ns").get<double>(), 20.0);
+  double predicted = 0;
+  for (const char* cls : {"camera", "shadow", "bounce1", "bounce2", "bounce3+"}) {
+    const auto& c = j.at("rays").at(cls);
+    const double n = c.at("count").get<double>();
+    if (n > 0)
+      predicted += n * (20 + 3 * c.at("cells_per_ray").get<double>() + 7 * c.at("refs_per_ray").get<double>()) * 1e-9;
+  }
+  EXPECT_NEAR(cost.at("predicted_s").get<double>(), predicted, 1e-9 * predicted);
 }
 
 TEST(RenderReport, UnwritableReportPathIsRefusedBeforeRendering) {
