@@ -3,6 +3,7 @@
 
 #include <cstdio>
 
+#include "renderer/render/lights.h"
 #include "renderer/render/render_helpers.h"
 #include "test_util.h"
 
@@ -122,22 +123,39 @@ namespace kappa {
 namespace {
 
 TEST(Analytic, EmitterTooDimToBeALightStillShinesThroughBsdfSampling) {
-  // Ke so small its luminance rounds to 0 in float: not a light for NEE, but
-  // a diffuse floor under it must still see it by BSDF sampling, with no NaN.
+  // A ceiling emitter 1e60 times dimmer than another light: its share of the
+  // light pmf rounds to 0 in float, so next-event estimation never picks it
+  // (pmf_of_triangle == 0, the branch under test). The bright light faces
+  // away and lights nothing here. A diffuse floor under the dim ceiling must
+  // still see it, by BSDF sampling with the whole MIS weight: L = rho Le F,
+  // with F ~ 0.99 the part of the floor's cosine-weighted hemisphere the
+  // 20 x 20 ceiling at height 1 covers.
   Scene s;
   s.materials.push_back(Material{"floor", {0.5f, 0.5f, 0.5f}, {0, 0, 0}});
-  s.materials.push_back(Material{"dim", {0, 0, 0}, {1e-44f, 0, 0}});
+  s.materials.push_back(Material{"dim", {0, 0, 0}, {1e-30f, 1e-30f, 1e-30f}});
+  s.materials.push_back(Material{"bright", {0, 0, 0}, {1e30f, 1e30f, 1e30f}});
   s.triangles.push_back({{-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}});
   s.triangles.push_back({{-10, 0, -10}, {10, 0, 10}, {10, 0, -10}});
   s.triangles.push_back({{-10, 1, -10}, {10, 1, 10}, {-10, 1, 10}});  // faces down
   s.triangles.push_back({{-10, 1, -10}, {10, 1, -10}, {10, 1, 10}});
-  s.material_of = {0, 0, 1, 1};
+  s.triangles.push_back({{0, 5, 0}, {0, 5, 1}, {1, 5, 0}});  // above the ceiling, facing up
+  s.material_of = {0, 0, 1, 1, 2};
   s.camera = CameraSpec{{0, 0.5f, 0}, {0, 0, 0.01f}, {0, 0, 1}, 60.0f};
   s.width = s.height = 8;
+  const Lights lights(s);
+  ASSERT_EQ(lights.pmf_of_triangle(2), 0.0f);  // too dim to be a light
+  ASSERT_GT(lights.pmf_of_triangle(4), 0.0f);
   RenderSettings settings;
-  settings.spp = 4;
+  settings.spp = 16;
   const Film film = test::render_scene(s, settings);
-  for (float v : film.rgb) ASSERT_TRUE(std::isfinite(v));
+  double sum = 0;
+  for (float v : film.rgb) {
+    ASSERT_TRUE(std::isfinite(v));
+    sum += v;
+  }
+  const double mean = sum / double(film.rgb.size());
+  EXPECT_GT(mean, 0.5e-30 * 0.9);  // it shines
+  EXPECT_LT(mean, 0.5e-30 * 1.0);
 }
 
 }  // namespace

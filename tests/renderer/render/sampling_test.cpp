@@ -44,18 +44,31 @@ TEST(Sampling, CosineHemisphereIsUnitAndHasMeanCosineTwoThirds) {
 }
 
 TEST(Sampling, TriangleSamplesAreUniform) {
+  // Uniform over the triangle: each barycentric has density 2(1 - b), so
+  // P(b < 1/2) = 3/4 and E[b^2] = 1/6, and the 4 sub-triangles of the
+  // midpoint subdivision get a quarter of the samples each. (A sampler
+  // returning (1/3, 1/3, 1/3) has the right mean and fails all of these.)
   Rng rng(2, 2, 2);
-  double mean[3] = {0, 0, 0};
+  double mean[3] = {0, 0, 0}, mean_sq[3] = {0, 0, 0};
+  int below_half[3] = {0, 0, 0}, quarter[4] = {0, 0, 0, 0};
   const int n = 200000;
   for (int i = 0; i < n; ++i) {
-    float b0, b1, b2;
-    sample_triangle(rng.uniform(), rng.uniform(), b0, b1, b2);
-    ASSERT_GE(b0, 0.0f);
-    ASSERT_GE(b1, 0.0f);
-    ASSERT_GE(b2, -1e-7f);
-    mean[0] += b0, mean[1] += b1, mean[2] += b2;
+    float b[3];
+    sample_triangle(rng.uniform(), rng.uniform(), b[0], b[1], b[2]);
+    ASSERT_GE(b[0], 0.0f);
+    ASSERT_GE(b[1], 0.0f);
+    ASSERT_GE(b[2], -1e-7f);
+    ASSERT_NEAR(b[0] + b[1] + b[2], 1.0f, 1e-6f);
+    for (int k = 0; k < 3; ++k) mean[k] += b[k], mean_sq[k] += double(b[k]) * b[k], below_half[k] += b[k] < 0.5f;
+    // The corner sub-triangle k holds b_k > 1/2; the middle one none.
+    ++quarter[b[0] > 0.5f ? 0 : b[1] > 0.5f ? 1 : b[2] > 0.5f ? 2 : 3];
   }
-  for (double m : mean) EXPECT_NEAR(m / n, 1.0 / 3.0, 0.003);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(mean[k] / n, 1.0 / 3.0, 0.003) << k;
+    EXPECT_NEAR(mean_sq[k] / n, 1.0 / 6.0, 0.003) << k;
+    EXPECT_NEAR(double(below_half[k]) / n, 0.75, 0.005) << k;
+  }
+  for (int q : quarter) EXPECT_NEAR(double(q) / n, 0.25, 0.005);
 }
 
 TEST(Sampling, FrameIsOrthonormal) {
@@ -63,7 +76,12 @@ TEST(Sampling, FrameIsOrthonormal) {
     const Frame f(n);
     EXPECT_NEAR(dot(f.s, f.t), 0.0f, 1e-6f);
     EXPECT_NEAR(dot(f.s, f.n), 0.0f, 1e-6f);
+    EXPECT_NEAR(dot(f.t, f.n), 0.0f, 1e-6f);
     EXPECT_NEAR(length(f.s), 1.0f, 1e-6f);
+    EXPECT_NEAR(length(f.t), 1.0f, 1e-6f);
+    EXPECT_NEAR(length(f.n), 1.0f, 1e-6f);
+    // Right-handed: s x t = n.
+    EXPECT_NEAR(length(cross(f.s, f.t) - f.n), 0.0f, 1e-6f);
     EXPECT_NEAR(length(f.to_world({0, 0, 1}) - n), 0.0f, 1e-6f);
   }
 }
