@@ -120,6 +120,61 @@ TEST(Walk, ReportsEveryCellItsSegmentCrossesOnceInOrder) {
   }
 }
 
+TEST(Walk, AnAxisRayThroughCellCentresVisitsExactlyOneRowOfCells) {
+  // A 4x4x4 grid over [0, 4]^3 (one triangle inside); a ray along x through
+  // the centres of the cells at y = 1, z = 2 crosses exactly 4 cells.
+  const std::vector<Triangle> tris = {{{1, 1, 1}, {3, 1, 1}, {1, 3, 3}}};
+  GridOptions options;
+  options.resolution = GridResolution{4, 4, 4};
+  options.box = std::pair{Vec3d{0, 0, 0}, Vec3d{4, 4, 4}};
+  const UniformGrid grid(tris, options);
+  for (const Vec3f d : {Vec3f{1, 0, 0}, Vec3f{-1, 0, 0}}) {
+    ListRecorder rec;
+    grid.walk_whole(Ray{{d.x > 0 ? -1.0f : 5.0f, 1.5f, 2.5f}, d}, rec);
+    ASSERT_EQ(rec.cells.size(), 4u);
+    EXPECT_EQ(rec.counts.cells, 4u);
+    for (int k = 0; k < 4; ++k)
+      EXPECT_EQ(rec.cells[std::size_t(k)].index, grid.cell_index(d.x > 0 ? k : 3 - k, 1, 2)) << k;
+  }
+}
+
+TEST(Walk, SegmentsWithEndsAwayFromCellPlanesCrossExactlyTheirCells) {
+  // Ends farther than the insertion margin from every cell plane: the walk
+  // reports exactly the cells whose interior the segment crosses, no more.
+  const auto tris = test::random_soup(200, 25, 0.2f);
+  GridOptions options;
+  options.resolution = GridResolution{9, 7, 5};
+  const UniformGrid grid(tris, options);
+  const GridInfo& g = grid.info();
+  const CellLayout& cells = *grid.cells();
+  std::mt19937 rng(26);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto away_from_planes = [&](const Vec3d& p) {
+    for (int a = 0; a < 3; ++a) {
+      const double f = (p[a] - g.lo[a]) / g.cell_size[a];
+      if (std::abs(f - std::round(f)) * g.cell_size[a] < 100 * g.margin) return false;
+    }
+    return true;
+  };
+  int checked = 0;
+  while (checked < 300) {
+    const Vec3d a = g.lo + Vec3d{u(rng), u(rng), u(rng)} * (g.hi - g.lo);
+    const Vec3d b = g.lo + Vec3d{u(rng), u(rng), u(rng)} * (g.hi - g.lo);
+    if (!away_from_planes(a) || !away_from_planes(b)) continue;
+    const Vec3d d = normalize(b - a);
+    const Ray ray{Vec3f(a), Vec3f(d), 0.0f, float(length(b - a))};
+    const Vec3d o(ray.o), dd(ray.d);  // as the walk sees them, in float
+    ListRecorder rec;
+    grid.walk_whole(ray, rec);
+    std::set<std::uint64_t> reported;
+    for (const Visit& v : rec.cells) reported.insert(v.index);
+    const std::set<std::uint64_t> expected = crossed_cells(cells, o, dd, 0.0, double(ray.tmax));
+    ASSERT_EQ(reported, expected) << "segment " << checked;
+    ASSERT_EQ(rec.counts.cells, expected.size());
+    ++checked;
+  }
+}
+
 TEST(Walk, ClosestHitWalksReportTheCellsUpToTheirHitAndItsTests) {
   const auto tris = test::random_soup(400, 22, 0.1f);
   GridOptions options;

@@ -1,6 +1,7 @@
 // Scenes whose rendered value is known in closed form.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "renderer/render/lights.h"
@@ -43,6 +44,27 @@ void expect_furnace(float rho, int spp, int max_depth) {
 TEST(Analytic, FurnaceConvergesToLeOverOneMinusRho) { expect_furnace(0.5f, 64, 32); }
 
 TEST(Analytic, FurnaceWithRho099ExercisesRussianRoulette) { expect_furnace(0.99f, 16, 2000); }
+
+// Truncated at d bounces (no Russian roulette), the furnace holds the first
+// d + 1 terms of its series: Le (1 - rho^(d+1)) / (1 - rho). Next-event
+// estimation at the last vertex and BSDF sampling of the light after it are
+// weighted by MIS, so each bounce's light is counted once, whichever found it.
+TEST(Analytic, FurnaceTruncatedAtMaxDepthHoldsTheFirstTermsOfItsSeries) {
+  const float rho = 0.5f, Le = 0.5f;
+  for (int d : {0, 1, 2, 3}) {
+    RenderSettings settings;
+    settings.spp = 16;
+    settings.max_depth = d;
+    settings.rr_depth = -1;
+    const Film film = test::render_scene(furnace(rho, Le), settings);
+    const double expected = Le * (1.0 - std::pow(double(rho), d + 1)) / (1.0 - rho);
+    for (int c = 0; c < 3; ++c) {
+      const auto stats = test::channel_stats(film, c);
+      EXPECT_LT(std::abs(stats.mean - expected), 0.01 * expected) << "max_depth " << d << " mean " << stats.mean;
+      EXPECT_LT(std::abs(stats.mean - expected), 4.0 * stats.standard_error + 1e-6 * expected) << "max_depth " << d;
+    }
+  }
+}
 
 TEST(Analytic, EmitterSeenDirectlyReadsExactlyKe) {
   Scene s;

@@ -61,6 +61,55 @@ TEST(RenderStats, CountingDoesNotChangeThePixels) {
   EXPECT_EQ(counted, b.rays);  // every query is in exactly one class
 }
 
+bool same_floats(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+TEST(RenderStats, CountingDoesNotChangeThePixelsOfAnyAccelerator) {
+  const Scene scene = small_cornell();
+  for (const char* name : {"naive", "grid", "embree"}) {
+    SCOPED_TRACE(name);
+    const auto accel = make_accelerator(name, scene.triangles);
+    Film off(scene.width, scene.height, {}), on(scene.width, scene.height, {});
+    const RenderResult a = render_with(scene, *accel, false, 0, off);
+    const RenderResult b = render_with(scene, *accel, true, 0, on);
+    EXPECT_TRUE(same_floats(off.rgb, on.rgb));
+    EXPECT_EQ(a.rays, b.rays);
+    ASSERT_TRUE(b.counters);
+  }
+}
+
+// A stats-on frame counting every path per cell, with the cost AOVs: image,
+// AOVs and counts the same for 1, 2 and 4 threads.
+TEST(RenderStats, StatsOnFramesAndCostAovsDoNotDependOnTheThreadCount) {
+  const Scene scene = small_cornell();
+  const auto grid = make_accelerator("grid", scene.triangles);
+  RenderSettings settings;
+  settings.spp = 4;
+  settings.stats = true;
+  settings.cell_sample = 1;
+  settings.aov = AovSelection{true, true, true, true};
+  std::vector<Film> films;
+  std::vector<RenderResult> results;
+  for (int threads : {1, 2, 4}) {
+    const ThreadLimit limit(threads);
+    films.emplace_back(scene.width, scene.height, settings.aov);
+    results.push_back(render(scene, *grid, settings, films.back()));
+  }
+  for (std::size_t k = 1; k < films.size(); ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_TRUE(same_floats(films[0].rgb, films[k].rgb));
+    EXPECT_TRUE(same_floats(films[0].albedo, films[k].albedo));
+    EXPECT_TRUE(same_floats(films[0].cost_cells, films[k].cost_cells));
+    EXPECT_TRUE(same_floats(films[0].cost_tests, films[k].cost_tests));
+    EXPECT_EQ(results[0].cell_sample, 1u);
+    EXPECT_EQ(results[0].counters->classes[kCamera].visits(), results[k].counters->classes[kCamera].visits());
+  }
+  double cells = 0;
+  for (float v : films[0].cost_cells) cells += v;
+  EXPECT_GT(cells, 0.0);  // the cost AOV holds counts
+}
+
 TEST(RenderStats, CountersDoNotDependOnTheThreadCount) {
   const Scene scene = small_cornell();
   const auto grid = make_accelerator("grid", scene.triangles);
