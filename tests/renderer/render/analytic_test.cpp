@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "renderer/render/lights.h"
 #include "renderer/render/render_helpers.h"
@@ -178,6 +179,100 @@ TEST(Analytic, EmitterTooDimToBeALightStillShinesThroughBsdfSampling) {
   const double mean = sum / double(film.rgb.size());
   EXPECT_GT(mean, 0.5e-30 * 0.9);  // it shines
   EXPECT_LT(mean, 0.5e-30 * 1.0);
+}
+
+/// The part of a floor point's cosine-weighted hemisphere that a square of
+/// half-side w, centred at height h above it and parallel to the floor,
+/// covers (the view factor: four corner rectangles, each
+/// (1/2pi)[A/sqrt(1+A^2) atan(A/sqrt(1+A^2))] twice, with A = w/h).
+double square_view_factor(double w, double h) {
+  const double A = w / h, s = A / std::sqrt(1 + A * A);
+  return 4.0 / std::numbers::pi * s * std::atan(s);
+}
+
+/// A black square emitter of half-side w at height h, facing down.
+void add_ceiling_light(Scene& s, float w, float h, std::uint32_t material) {
+  s.triangles.push_back({{-w, h, -w}, {w, h, w}, {-w, h, w}});
+  s.triangles.push_back({{-w, h, -w}, {w, h, -w}, {w, h, w}});
+  s.material_of.insert(s.material_of.end(), {material, material});
+}
+
+/// A diffuse floor (albedo 0.5) seen from above in a 0.5 degree field of
+/// view, so every pixel shows (almost) the point under the lights. Small, so
+/// that the environment's share of the light pmf (by power, which grows with
+/// the scene's radius) stays far from 1 and its pdf matters.
+Scene floor_under_lights() {
+  Scene s;
+  s.materials.push_back(Material{"floor", {0.5f, 0.5f, 0.5f}, {0, 0, 0}});
+  s.triangles.push_back({{-3, 0, -3}, {-3, 0, 3}, {3, 0, 3}});
+  s.triangles.push_back({{-3, 0, -3}, {3, 0, 3}, {3, 0, -3}});
+  s.material_of = {0, 0};
+  s.camera = CameraSpec{{0, 0.5f, 0}, {0, 0, 1e-4f}, {0, 0, 1}, 0.5f};
+  s.width = s.height = 4;
+  return s;
+}
+
+void expect_floor_radiance(const Scene& s, double expected) {
+  RenderSettings settings;
+  settings.spp = 4096;
+  const Film film = test::render_scene(s, settings);
+  for (int c = 0; c < 3; ++c) {
+    const auto stats = test::channel_stats(film, c);
+    EXPECT_LT(std::abs(stats.mean - expected), 0.02 * expected) << "channel " << c << " mean " << stats.mean;
+    EXPECT_LT(std::abs(stats.mean - expected), 4.0 * stats.standard_error + 1e-6 * expected) << "channel " << c;
+  }
+}
+
+// Two lights of unequal power (so unequal light pdfs), the nearer one hiding
+// the middle of the farther from the floor point: direct light from both,
+// found by next-event estimation and BSDF sampling under MIS, is
+// rho (Le1 F1 + Le2 (F2 - F1)).
+TEST(Analytic, TwoLightsUnderMisMatchTheirViewFactors) {
+  Scene s = floor_under_lights();
+  s.materials.push_back(Material{"near", {0, 0, 0}, {4, 4, 4}});
+  s.materials.push_back(Material{"far", {0, 0, 0}, {1, 1, 1}});
+  add_ceiling_light(s, 1, 1, 1);  // tan 45 degrees: inside the far light's pyramid (tan 53)
+  add_ceiling_light(s, 4, 3, 2);
+  const double F1 = square_view_factor(1, 1), F2 = square_view_factor(4, 3);
+  expect_floor_radiance(s, 0.5 * (4 * F1 + 1 * (F2 - F1)));
+}
+
+// A light and the environment: rho (Le F + L_env (1 - F)).
+TEST(Analytic, ALightAndTheEnvironmentUnderMisMatchTheirViewFactors) {
+  Scene s = floor_under_lights();
+  s.materials.push_back(Material{"light", {0, 0, 0}, {8, 8, 8}});
+  add_ceiling_light(s, 1, 2, 1);
+  s.environment = {0.25f, 0.25f, 0.25f};
+  const Lights lights(s);
+  ASSERT_GT(lights.pmf_environment(), 0.2f);  // both strategies matter
+  ASSERT_LT(lights.pmf_environment(), 0.8f);
+  const double F = square_view_factor(1, 2);
+  expect_floor_radiance(s, 0.5 * (8 * F + 0.25 * (1 - F)));
+}
+
+// The environment beside a light that lights nothing (it faces up, above a
+// black square): the light takes about half the light pmf, so the
+// environment's NEE and BSDF strategies both carry weight, and the floor
+// reads rho L_env (1 - F), F the square's view factor. A wrong environment
+// pdf in either strategy's MIS weight shows here.
+TEST(Analytic, TheEnvironmentBesideALightThatLightsNothingUnderMis) {
+  Scene s;
+  s.materials.push_back(Material{"floor", {0.5f, 0.5f, 0.5f}, {0, 0, 0}});
+  s.materials.push_back(Material{"black", {0, 0, 0}, {0, 0, 0}});
+  s.materials.push_back(Material{"light", {0, 0, 0}, {90, 90, 90}});
+  s.triangles.push_back({{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}});
+  s.triangles.push_back({{-1, 0, -1}, {1, 0, 1}, {1, 0, -1}});
+  s.material_of = {0, 0};
+  add_ceiling_light(s, 1, 2, 1);  // the black square: emits nothing
+  s.triangles.push_back({{0, 2.5f, 0}, {0, 2.5f, 1}, {1, 2.5f, 0}});  // facing up, inside the square's shadow
+  s.material_of.push_back(2);
+  s.environment = {1, 1, 1};
+  s.camera = CameraSpec{{0, 0.5f, 0}, {0, 0, 1e-4f}, {0, 0, 1}, 0.5f};
+  s.width = s.height = 4;
+  const Lights lights(s);
+  ASSERT_GT(lights.pmf_environment(), 0.35f);
+  ASSERT_LT(lights.pmf_environment(), 0.65f);
+  expect_floor_radiance(s, 0.5 * 1.0 * (1 - square_view_factor(1, 2)));
 }
 
 }  // namespace
