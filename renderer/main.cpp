@@ -5,7 +5,12 @@
 #include "renderer/commands/cast_command.h"
 #include "renderer/commands/render_command.h"
 
+#include <csignal>
+
 int main(int argc, char** argv) {
+  // A report written to a pipe whose reader went away fails its write
+  // (exit 1) instead of killing the process.
+  std::signal(SIGPIPE, SIG_IGN);
   kappa::Command command;
   if (const auto exit_code = kappa::parse_command_line(argc, argv, command)) return *exit_code;
   return kappa::exit_code_of([&] {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "accel/input_error.h"
+#include "accel/input_file.h"
 
 namespace kappa {
 namespace {
@@ -129,6 +130,7 @@ std::filesystem::path default_calibration_path() {
 std::optional<Calibration> load_calibration(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) return std::nullopt;
+  check_input_file(file, "a calibration file");  // never blocks on a FIFO
   std::ifstream in(file);
   try {
     const auto j = nlohmann::json::parse(in);

@@ -41,9 +41,10 @@ std::string shell_quote(const std::string& s) {
 }
 }  // namespace
 
-RunResult run_kappa(const std::vector<std::string>& args, const std::filesystem::path& working_dir) {
+RunResult run_kappa(const std::vector<std::string>& args, const std::filesystem::path& working_dir, int timeout_s) {
   TempDir tmp;
-  std::string cmd = shell_quote(KAPPA_BINARY);
+  // With a timeout, a run that hangs ends with exit code 124 (coreutils' timeout).
+  std::string cmd = (timeout_s > 0 ? "timeout " + std::to_string(timeout_s) + " " : std::string()) + shell_quote(KAPPA_BINARY);
   for (const auto& a : args) cmd += " " + shell_quote(a);
   // In a subshell, so that a failing cd reports into the captured stderr too.
   if (!working_dir.empty()) cmd = "(cd " + shell_quote(working_dir.string()) + " && exec " + cmd + ")";

@@ -43,7 +43,8 @@ struct RunResult {
 /// Runs build/kappa with `args` (each shell-quoted), stdin from /dev/null,
 /// in `working_dir` when given (for relative paths such as the default
 /// out/<scene name>.exr), else in the test's own working directory.
-RunResult run_kappa(const std::vector<std::string>& args, const std::filesystem::path& working_dir = {});
+RunResult run_kappa(const std::vector<std::string>& args, const std::filesystem::path& working_dir = {},
+                    int timeout_s = 0);
 
 std::string read_file(const std::filesystem::path& p);
 void write_file(const std::filesystem::path& p, const std::string& text);

@@ -13,6 +13,7 @@
 #include "accel/factory.h"
 #include "accel/dispatch.h"
 #include "renderer/io/atomic_file.h"
+#include "renderer/io/output_guard.h"
 #include "renderer/render/ray_sets.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/util/error.h"
@@ -72,12 +73,12 @@ double median_of(std::vector<double> v) {
 int run_bench(const BenchOptions& options) {
   std::vector<RayClass> classes;
   for (const auto& r : options.rays) classes.push_back(parse_ray_class(r));
-  std::unique_ptr<AtomicOutput> json_out;
-  if (!options.json.empty()) json_out = std::make_unique<AtomicOutput>(options.json);
-
   Warnings warnings;
   const Scene scene = load_scene(options.scene, warnings);
   for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", printable_line(w).c_str());
+  refuse_outputs_over_inputs({options.json}, scene.inputs);
+  std::unique_ptr<AtomicOutput> json_out;
+  if (!options.json.empty()) json_out = std::make_unique<AtomicOutput>(options.json);
   const std::size_t N = scene.triangles.size();
 
   // Ray sets first, from the grid (any exact accelerator gives the same rays).

@@ -15,6 +15,7 @@
 #include "accel/grid_traverse.h"
 #include "accel/thread_limit.h"
 #include "renderer/io/atomic_file.h"
+#include "renderer/io/output_guard.h"
 #include "renderer/render/ray_sets.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/util/error.h"
@@ -65,19 +66,26 @@ std::string machine_name() {
 
 int run_calibrate(const CalibrateOptions& options) {
   const std::filesystem::path out_path = options.out.empty() ? default_calibration_path() : std::filesystem::path(options.out);
-  AtomicOutput out(out_path);
-  std::vector<std::string> scenes = options.scenes;
-  if (scenes.empty()) {
+  std::vector<std::string> files = options.scenes;
+  if (files.empty()) {
     const auto assets = default_calibration_path().parent_path().parent_path() / "assets";
-    scenes = {(assets / "cornell-box" / "scene.json").string(), (assets / "bunny-lowres" / "scene_lowres.json").string()};
+    files = {(assets / "cornell-box" / "scene.json").string(), (assets / "bunny-lowres" / "scene_lowres.json").string()};
   }
+  // Every scene first: the calibration file must not replace one of their files.
+  std::vector<Scene> scenes;
+  std::vector<std::filesystem::path> inputs;
+  for (const auto& file : files) {
+    Warnings warnings;
+    scenes.push_back(load_scene(file, warnings));
+    inputs.insert(inputs.end(), scenes.back().inputs.begin(), scenes.back().inputs.end());
+  }
+  refuse_outputs_over_inputs({out_path}, inputs);
+  AtomicOutput out(out_path);
 
   const ThreadLimit thread_limit(options.threads);
   const int threads = active_threads();
   std::vector<CostSample> samples;
-  for (const auto& file : scenes) {
-    Warnings warnings;
-    const Scene scene = load_scene(file, warnings);
+  for (const Scene& scene : scenes) {
     for (double density : options.densities) {
       AccelOptions build = options.build;
       build.grid_density = density;

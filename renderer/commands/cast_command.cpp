@@ -13,6 +13,7 @@
 #include "accel/dispatch.h"
 #include "accel/thread_limit.h"
 #include "renderer/io/atomic_file.h"
+#include "renderer/io/output_guard.h"
 #include "renderer/render/ray_sets.h"
 #include "renderer/report/report_sections.h"
 #include "renderer/report/stats_table.h"
@@ -26,13 +27,14 @@
 namespace kappa {
 
 int run_cast(const CastOptions& options) {
-  std::unique_ptr<AtomicOutput> report_out;
-  if (!options.report.empty()) report_out = std::make_unique<AtomicOutput>(options.report);
   const ThreadLimit thread_limit(options.threads);
 
   Warnings warnings;
   const Scene scene = load_scene(options.scene, warnings);
   for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", printable_line(w).c_str());
+  refuse_outputs_over_inputs({options.report}, scene.inputs);
+  std::unique_ptr<AtomicOutput> report_out;
+  if (!options.report.empty()) report_out = std::make_unique<AtomicOutput>(options.report);
 
   const auto accel = make_accelerator(options.accel, scene.triangles, options.build);
   const CellLayout* cells = accel->cells();

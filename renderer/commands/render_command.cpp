@@ -16,6 +16,7 @@
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/cell_map.h"
 #include "renderer/io/exr_output.h"
+#include "renderer/io/output_guard.h"
 #include "renderer/render/integrator.h"
 #include "renderer/report/render_report.h"
 #include "renderer/report/stats_table.h"
@@ -92,15 +93,21 @@ int run_render(const RenderOptions& options) {
   if (scene.camera_framed)  // frame again for the film's final aspect ratio
     scene.camera = framing_camera(scene.bounds(), scene.camera.vfov_deg, float(scene.width) / float(scene.height));
 
-  // Claim the outputs before rendering: an unwritable path fails now, not
-  // after an hour of work.
-  AtomicOutput output(output_path(options, scene));
+  // No output may replace an input or another output; then claim the
+  // outputs before rendering: an unwritable path fails now, not after an
+  // hour of work.
+  const std::filesystem::path calibration_path =
+      options.calibration.empty() ? default_calibration_path() : std::filesystem::path(options.calibration);
+  const std::filesystem::path out_path = output_path(options, scene);
+  std::vector<std::filesystem::path> inputs = scene.inputs;
+  inputs.push_back(calibration_path);
+  refuse_outputs_over_inputs({out_path, options.report, options.cell_map}, inputs);
+  AtomicOutput output(out_path, OutputKind::image);
   std::unique_ptr<AtomicOutput> report_out, cell_map_out;
   if (!options.report.empty()) report_out = std::make_unique<AtomicOutput>(options.report);
-  if (!options.cell_map.empty()) cell_map_out = std::make_unique<AtomicOutput>(options.cell_map);
+  if (!options.cell_map.empty()) cell_map_out = std::make_unique<AtomicOutput>(options.cell_map, OutputKind::image);
   // The calibration too is read now: a bad file must not cost a finished render.
-  const std::optional<Calibration> calibration = load_calibration(
-      options.calibration.empty() ? default_calibration_path() : std::filesystem::path(options.calibration));
+  const std::optional<Calibration> calibration = load_calibration(calibration_path);
   if (!calibration && !options.calibration.empty())
     throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
 

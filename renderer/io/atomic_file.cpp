@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <mutex>
+#include <stdexcept>
 
 #include "renderer/util/error.h"
 
@@ -63,16 +64,39 @@ void release_slot(int i) {
 
 }  // namespace
 
-AtomicOutput::AtomicOutput(const std::filesystem::path& target) : m_target(target) {
+AtomicOutput::AtomicOutput(const std::filesystem::path& target, OutputKind kind) : m_target(target) {
   std::call_once(g_handlers_installed, install_handlers);
   std::error_code ec;
-  if (std::filesystem::is_directory(target, ec)) fail(target, 0, "cannot write: it is a directory");
-  const std::filesystem::path dir = target.parent_path().empty() ? "." : target.parent_path();
+  // A link is written through, never replaced: the temporary goes beside the
+  // file it points to (/dev/stdout -> /proc/self/fd/1 -> a file must not
+  // become a regular file in /dev).
+  if (std::filesystem::is_symlink(target, ec)) {
+    const std::filesystem::path real = std::filesystem::weakly_canonical(target, ec);
+    if (!ec && !real.empty()) m_target = real;
+  }
+  const auto status = std::filesystem::status(target, ec);  // follows links
+  using std::filesystem::file_type;
+  switch (status.type()) {
+    case file_type::directory: fail(target, 0, "cannot write: it is a directory");
+    case file_type::socket: fail(target, 0, "cannot write: it is a socket");
+    case file_type::block: fail(target, 0, "cannot write: it is a block device");
+    case file_type::character:
+    case file_type::fifo:
+      if (kind == OutputKind::image) fail(target, 0, "cannot write an image to a device or FIFO: give a file name");
+      // Written as it is: no temporary, no rename over the node.
+      m_direct = true;
+      m_target = m_temp = target;
+      m_committed = true;  // nothing to remove
+      return;
+    default:
+      break;
+  }
+  const std::filesystem::path dir = m_target.parent_path().empty() ? "." : m_target.parent_path();
   if (!std::filesystem::is_directory(dir, ec)) fail(target, 0, "cannot write: folder '" + dir.string() + "' does not exist");
   // Same folder as the target, so the final rename cannot cross file systems;
   // the .exr ending keeps format detection by extension working.
-  m_temp = dir / ("." + target.filename().string() + ".kappa-" + std::to_string(::getpid()) + ".tmp" +
-                  target.extension().string());
+  m_temp = dir / ("." + m_target.filename().string() + ".kappa-" + std::to_string(::getpid()) + ".tmp" +
+                  m_target.extension().string());
   // Registered for the signal handler before it exists, so no interrupt can
   // leave it behind.
   m_slot = claim_slot(m_temp.string());
@@ -89,6 +113,7 @@ AtomicOutput::AtomicOutput(const std::filesystem::path& target) : m_target(targe
 }
 
 AtomicOutput::~AtomicOutput() {
+  if (m_direct) return;
   if (!m_committed) ::unlink(m_temp.c_str());
   if (m_slot >= 0) release_slot(m_slot);
 }
@@ -98,12 +123,18 @@ void write_and_commit(AtomicOutput& output, const std::string& text) {
     std::ofstream out(output.temp_path(), std::ios::binary);
     out << text;
     out.flush();
-    if (!out) fail(output.target(), 0, "cannot write");
+    if (!out) {
+      // A device or pipe that fails mid-way (a reader that went away) is not
+      // the input's fault: an internal error, exit 1.
+      if (output.direct()) throw std::runtime_error(output.target().string() + ": cannot write (" + std::strerror(errno) + ")");
+      fail(output.target(), 0, "cannot write");
+    }
   }
   output.commit();
 }
 
 void AtomicOutput::commit() {
+  if (m_direct) return;  // already written in place
   // On disk before it takes the target's name, so that a crash right after
   // cannot leave an empty file there.
   if (const int fd = ::open(m_temp.c_str(), O_RDONLY); fd >= 0) {

@@ -1,6 +1,10 @@
 // Output files appear whole or not at all: written to a temporary file in the
 // target folder and renamed over the target only once complete. The temporary
 // is removed on failure, on destruction, and on SIGINT/SIGTERM/SIGHUP.
+// A text output (a JSON report) that names a character device or a FIFO
+// (/dev/stdout, a pipe) is written to it directly: renaming a temporary over
+// it would replace the device node. Images must be regular files or new
+// paths; directories, sockets and block devices are refused for every output.
 #pragma once
 
 #include <filesystem>
@@ -8,24 +12,30 @@
 
 namespace kappa {
 
+/// What an output holds: text may go to a device or FIFO; an image may not.
+enum class OutputKind { text, image };
+
 class AtomicOutput {
  public:
   /// Creates the temporary file now, so an unwritable destination is refused
   /// before any work is done (throws InputError). An existing target is left
   /// untouched until commit().
-  explicit AtomicOutput(const std::filesystem::path& target);
+  explicit AtomicOutput(const std::filesystem::path& target, OutputKind kind = OutputKind::text);
   ~AtomicOutput();
   AtomicOutput(const AtomicOutput&) = delete;
   AtomicOutput& operator=(const AtomicOutput&) = delete;
 
   const std::filesystem::path& temp_path() const { return m_temp; }
   const std::filesystem::path& target() const { return m_target; }
+  /// Written straight to a device or FIFO (no temporary).
+  bool direct() const { return m_direct; }
 
   /// Renames the finished temporary over the target (throws InputError).
   void commit();
 
  private:
   std::filesystem::path m_target, m_temp;
+  bool m_direct = false;  ///< written straight to a device or FIFO: no temporary
   int m_slot = -1;  ///< entry in the signal handler's cleanup table
   bool m_committed = false;
 };

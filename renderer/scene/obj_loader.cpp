@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -58,16 +59,42 @@ std::uint32_t default_material(Scene& scene) {
   return std::uint32_t(scene.materials.size() - 1);
 }
 
+/// Hands tinyobjloader the text of the material libraries already read and
+/// checked, by the name the OBJ's `mtllib` gives.
+class CheckedMaterialReader : public tinyobj::MaterialReader {
+ public:
+  explicit CheckedMaterialReader(const std::map<std::string, std::string>& libraries) : m_libraries(libraries) {}
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* ids, std::string* warn, std::string* err) override {
+    const auto it = m_libraries.find(name);
+    if (it == m_libraries.end()) return false;  // missing: warned about above
+    std::istringstream text(it->second);
+    tinyobj::LoadMtl(ids, materials, &text, warn, err);
+    return true;
+  }
+
+ private:
+  const std::map<std::string, std::string>& m_libraries;
+};
+
 }  // namespace
 
 void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings) {
   const ObjScan scan = scan_obj(obj, warnings);
   const std::filesystem::path dir = obj.parent_path();
+  scene.inputs.push_back(obj);
 
+  // Material libraries pass the same input check as every file, and
+  // tinyobjloader gets their checked text, never a path to open itself.
+  std::map<std::string, std::string> libraries;
   for (const auto& lib : scan.mtllibs) {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(dir / lib, ec))
+    if (!std::filesystem::exists(dir / lib, ec)) {
       warnings.push_back(located(obj, 0, "material library '" + lib + "' not found; its materials use the default grey"));
+      continue;
+    }
+    libraries[lib] = read_input_file(dir / lib, "a material library (MTL)");
+    scene.inputs.push_back(dir / lib);
   }
   for (const ObjPolygon& poly : scan.polygons) {
     std::vector<std::size_t> distinct = poly.vertices;
@@ -89,7 +116,7 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
   std::vector<tinyobj::material_t> materials;
   std::string tiny_warn, tiny_err;
   std::istringstream text(scan.text);
-  tinyobj::MaterialFileReader mtl_reader(dir.empty() ? std::string("./") : dir.string() + "/");
+  CheckedMaterialReader mtl_reader(libraries);
   // Problems tinyobjloader warns about were already reported by the scan, in
   // Kappa's words and with line numbers, so its own warning text is not repeated.
   if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &tiny_warn, &tiny_err, &text, &mtl_reader, true, false)) {

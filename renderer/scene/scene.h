@@ -32,6 +32,9 @@ struct CameraSpec {
 struct Scene {
   std::string name;                    ///< used for the default output file name
   std::filesystem::path source;        ///< the file it was loaded from
+  /// Every file read to make it: the scene file, each OBJ and each MTL (what
+  /// no output of the run may overwrite).
+  std::vector<std::filesystem::path> inputs;
   std::vector<Triangle> triangles;     ///< indexed by 32-bit TriangleId
   std::vector<std::uint32_t> material_of;  ///< per triangle, index into materials
   std::vector<Material> materials;

@@ -109,6 +109,7 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings) {
 
   Scene scene;
   scene.source = file;
+  scene.inputs.push_back(file);
   scene.name = scene_name(file);
 
   if (!root.contains("meshes")) fail(file, 0, "missing field 'meshes' (a list of OBJ files)");
@@ -146,7 +147,9 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings) {
 
   for (const auto& mesh : mesh_paths) {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(mesh, ec)) fail(file, 0, "mesh '" + mesh.string() + "' not found");
+    // What else the path may be (a FIFO, a device) is refused by the OBJ
+    // reader's input check, naming the mesh.
+    if (!std::filesystem::exists(mesh, ec)) fail(file, 0, "mesh '" + mesh.string() + "' not found");
     load_obj(mesh, scene, warnings);
   }
   if (!has_camera) {
@@ -188,9 +191,7 @@ std::string scene_name(const std::filesystem::path& file) {
 
 Scene load_scene(const std::filesystem::path& file, Warnings& warnings) {
   Warnings pending;  // printed only if the scene loads: a refusal is one line
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) fail(file, 0, "file not found");
-  if (std::filesystem::is_directory(file, ec)) fail(file, 0, "is a directory, not a scene file");
+  check_input_file(file, "a scene file");
   const std::string ext = lower_extension(file);
   Scene scene;
   if (ext == ".json") {

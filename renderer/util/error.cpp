@@ -1,7 +1,5 @@
 #include "renderer/util/error.h"
 
-#include <fstream>
-#include <sstream>
 
 namespace kappa {
 
@@ -15,17 +13,6 @@ std::string located(const std::filesystem::path& file, std::size_t line, const s
 
 void fail(const std::filesystem::path& file, std::size_t line, const std::string& message) {
   throw InputError(located(file, line, message));
-}
-
-std::string read_input_file(const std::filesystem::path& file, const char* kind) {
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) fail(file, 0, "file not found");
-  if (std::filesystem::is_directory(file, ec)) fail(file, 0, std::string("is a directory, not ") + kind);
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail(file, 0, "cannot open for reading");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 namespace {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "accel/input_error.h"
+#include "accel/input_file.h"  // read_input_file: every reader's one check
 
 namespace kappa {
 
@@ -22,10 +23,6 @@ std::string located(const std::filesystem::path& file, std::size_t line, const s
 /// may hold newlines or bytes that are not UTF-8 (Latin-1 names); those bytes
 /// become \xNN and line breaks become spaces.
 std::string printable_line(const std::string& message);
-
-/// The whole content of an input file; `kind` names what it should be in
-/// the error when it is a directory ("an OBJ file", "a scene file").
-std::string read_input_file(const std::filesystem::path& file, const char* kind);
 
 /// Warnings gathered while loading, printed by the caller (and inspected by tests).
 using Warnings = std::vector<std::string>;
