@@ -1,7 +1,12 @@
 #include "renderer/cli/accel_flags.h"
 
+#include <cerrno>
+#include <charconv>
+#include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include "accel/factory.h"
@@ -28,6 +33,38 @@ CLI::Validator grid_resolution_validator() {
 
 }  // namespace
 
+CLI::Validator finite_number(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& value) {
+        char* end = nullptr;
+        errno = 0;
+        const double v = std::strtod(value.c_str(), &end);
+        if (value.empty() || end != value.c_str() + value.size()) return "'" + value + "' is not a number";
+        if (!std::isfinite(v) || errno == ERANGE) return "'" + value + "' is not a finite number";
+        if (v < lo || v > hi) {
+          std::ostringstream s;
+          s << "'" << value << "' is outside [" << lo << ", " << hi << "]";
+          return s.str();
+        }
+        return std::string();
+      },
+      "finite number");
+}
+
+CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& value) {
+        std::uint64_t v = 0;
+        const char* first = value.data();
+        const char* last = first + value.size();
+        const auto [end, ec] = std::from_chars(first, last, v);
+        if (value.empty() || end != last || ec != std::errc() || v < lo || v > hi)
+          return "'" + value + "' is not a whole number from " + std::to_string(lo) + " to " + std::to_string(hi);
+        return std::string();
+      },
+      "whole number");
+}
+
 void add_accel_flag(CLI::App& app, std::string& accel, const std::string& help) {
   app.add_option("--accel", accel, help)->check(CLI::IsMember(accelerator_names()))->capture_default_str();
 }
@@ -45,7 +82,7 @@ void add_grid_flags(CLI::App& app, AccelOptions& build) {
       ->check(grid_resolution_validator())
       ->capture_default_str();
   app.add_option("--grid-density", build.grid_density, "cells per triangle for --grid-res auto (default 32)")
-      ->check(CLI::Range(1e-6, 1e6));
+      ->check(finite_number(1e-6, 1e6));
   add_grid_max_bytes_flag(app, build);
 }
 
@@ -53,7 +90,7 @@ void add_grid_max_bytes_flag(CLI::App& app, AccelOptions& build) {
   app.add_option("--grid-max-bytes", build.grid_max_bytes,
                  "refuse larger grids; with statistics, per-cell counters beyond it are refused and totals kept "
                  "(default: a quarter of RAM)")
-      ->check(CLI::Range(std::uint64_t(1), std::numeric_limits<std::uint64_t>::max()));
+      ->check(whole_number(1, std::numeric_limits<std::uint64_t>::max()));
 }
 
 }  // namespace kappa

@@ -21,4 +21,16 @@ void add_grid_flags(CLI::App& app, AccelOptions& build);
 /// --grid-max-bytes alone, for commands that set the resolution otherwise.
 void add_grid_max_bytes_flag(CLI::App& app, AccelOptions& build);
 
+/// A number that is finite and within [lo, hi]: NaN and infinities pass
+/// CLI11's own Range (every comparison with NaN is false), so they are
+/// refused here, naming the flag.
+CLI::Validator finite_number(double lo, double hi);
+/// A whole number written with digits only, within [lo, hi]: "-1" would
+/// otherwise wrap to 2^64 - 1 in an unsigned option.
+CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi);
+
+/// --seed: 0 ... 2^53 - 1, the integers a double holds exactly (the EXR and
+/// the report store it as a number).
+inline constexpr std::uint64_t kMaxSeed = (std::uint64_t(1) << 53) - 1;
+
 }  // namespace kappa

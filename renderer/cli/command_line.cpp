@@ -28,7 +28,7 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
       ->check(CLI::Range(0, 1 << 20))
       ->capture_default_str();
   render.add_flag("--no-rr", o.no_rr, "disable Russian roulette");
-  render.add_option("--seed", o.seed, "random seed")->capture_default_str();
+  render.add_option("--seed", o.seed, "random seed (0 to 2^53 - 1)")->check(whole_number(0, kMaxSeed))->capture_default_str();
   render.add_option("--threads", o.threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   render.add_option("--width", o.width, "film width (overrides the scene)")->check(CLI::Range(1, 1 << 15));
   render.add_option("--height", o.height, "film height (overrides the scene)")->check(CLI::Range(1, 1 << 15));
@@ -68,10 +68,11 @@ CLI::App* add_bench_command(CLI::App& app, BenchOptions& o) {
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   bench.add_option("--n", o.n, "rays per class")->check(CLI::Range(std::size_t(1), std::size_t(1) << 28))->capture_default_str();
-  bench.add_option("--seed", o.seed, "random seed of the ray sets")->capture_default_str();
+  bench.add_option("--seed", o.seed, "random seed of the ray sets")->check(whole_number(0, kMaxSeed))->capture_default_str();
   bench.add_option("--json", o.json, "also write the figures as JSON");
   add_grid_flags(bench, o.build);
   bench.add_option("--naive-budget", o.naive_budget_s, "skip naive when its estimated run time exceeds this (s)")
+      ->check(finite_number(0, 1e12))
       ->capture_default_str();
   return &bench;
 }
@@ -86,9 +87,9 @@ CLI::App* add_cast_command(CLI::App& app, CastOptions& o) {
   cast.add_option("--n", o.n, "rays to cast")->check(CLI::Range(std::size_t(1), std::size_t(1) << 30))->capture_default_str();
   add_accel_flag(cast, o.accel, "accelerator (per-cell statistics need grid)");
   add_grid_flags(cast, o.build);
-  cast.add_option("--seed", o.seed, "random seed")->capture_default_str();
+  cast.add_option("--seed", o.seed, "random seed")->check(whole_number(0, kMaxSeed))->capture_default_str();
   cast.add_option("--length", o.length, "segment length for --rays segments (default: two mean cell widths)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_number(1e-300, 1e300));
   cast.add_option("--threads", o.threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   cast.add_option("--report", o.report, "write the JSON report here");
   cast.add_flag("-q,--quiet", o.quiet, "no table on stdout");
@@ -102,7 +103,7 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateOptions& o) {
   calibrate.add_option("--density", o.densities, "grid densities (cells per triangle) to measure at")
       ->delimiter(',')
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-      ->check(CLI::Range(1e-6, 1e6))
+      ->check(finite_number(1e-6, 1e6))
       ->capture_default_str();
   calibrate.add_option("--n", o.n, "rays per class and grid")->check(CLI::Range(std::size_t(100), std::size_t(1) << 26))->capture_default_str();
   calibrate.add_option("--repeat", o.repeat, "timed passes (median)")->check(CLI::Range(1, 100))->capture_default_str();

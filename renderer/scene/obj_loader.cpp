@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "renderer/scene/mtl_scan.h"
 #include "renderer/scene/obj_scan.h"
 
 namespace kappa {
@@ -93,7 +94,7 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
       warnings.push_back(located(obj, 0, "material library '" + lib + "' not found; its materials use the default grey"));
       continue;
     }
-    libraries[lib] = read_input_file(dir / lib, "a material library (MTL)");
+    libraries[lib] = scan_mtl(dir / lib, read_input_file(dir / lib, "a material library (MTL)"));
     scene.inputs.push_back(dir / lib);
   }
   for (const ObjPolygon& poly : scan.polygons) {

@@ -11,24 +11,6 @@
 namespace kappa {
 namespace {
 
-/// Strict number: the whole token must be a decimal floating-point literal
-/// (an optional leading '+' is allowed, as OBJ writers emit it).
-enum class NumberStatus { ok, invalid, out_of_range };
-
-NumberStatus parse_number(std::string_view tok, double& out) {
-  const char* b = tok.data();
-  const char* e = b + tok.size();
-  if (b != e && *b == '+') {
-    ++b;
-    if (b == e || *b == '+' || *b == '-') return NumberStatus::invalid;
-  }
-  const auto [p, ec] = std::from_chars(b, e, out, std::chars_format::general);
-  if (p != e || b == e) return NumberStatus::invalid;
-  if (ec == std::errc::result_out_of_range) return NumberStatus::out_of_range;
-  if (ec != std::errc()) return NumberStatus::invalid;
-  return NumberStatus::ok;
-}
-
 bool parse_integer(std::string_view tok, long long& out) {
   const char* b = tok.data();
   const char* e = b + tok.size();
@@ -258,6 +240,21 @@ class Scanner {
 };
 
 }  // namespace
+
+NumberStatus parse_number(std::string_view tok, double& out) {
+  const char* b = tok.data();
+  const char* e = b + tok.size();
+  if (b != e && *b == '+') {
+    ++b;
+    if (b == e || *b == '+' || *b == '-') return NumberStatus::invalid;
+  }
+  const auto [p, ec] = std::from_chars(b, e, out, std::chars_format::general);
+  if (p != e || b == e) return NumberStatus::invalid;
+  if (ec == std::errc::result_out_of_range) return NumberStatus::out_of_range;
+  if (ec != std::errc()) return NumberStatus::invalid;
+  return NumberStatus::ok;
+}
+
 
 std::vector<std::string_view> split_ws(std::string_view s) {
   std::vector<std::string_view> out;

@@ -34,6 +34,11 @@ struct ObjScan {
 /// refuses; appends warnings for what it skips.
 ObjScan scan_obj(const std::filesystem::path& file, Warnings& warnings);
 
+/// Strict number: the whole token must be a decimal floating-point literal
+/// (an optional leading '+' is allowed, as OBJ writers emit it).
+enum class NumberStatus { ok, invalid, out_of_range };
+NumberStatus parse_number(std::string_view tok, double& out);
+
 /// Splits s at spaces and tabs (runs count once).
 std::vector<std::string_view> split_ws(std::string_view s);
 

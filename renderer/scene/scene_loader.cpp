@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "renderer/scene/json_scan.h"
 #include "renderer/scene/obj_limits.h"
 #include "renderer/scene/obj_loader.h"
 
@@ -33,7 +34,14 @@ std::pair<std::size_t, std::size_t> line_column(const std::string& text, std::si
 json parse_json(const std::filesystem::path& file, const std::string& text) {
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) fail(file, 0, "empty scene file");
   try {
-    return json::parse(text);
+    json root = json::parse(text);
+    check_json_keys_and_numbers(file, text);  // what the parser accepts silently
+    return root;
+  } catch (const json::out_of_range&) {
+    // A number that overflows a double: the parser says so without a
+    // position; the scan finds its line.
+    check_json_keys_and_numbers(file, text);
+    fail(file, 0, "a number does not fit a double");
   } catch (const json::parse_error& e) {
     // e.byte is one past the offending character.
     const auto [line, col] = line_column(text, e.byte > 0 ? e.byte - 1 : 0);

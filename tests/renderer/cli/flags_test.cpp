@@ -94,6 +94,14 @@ std::vector<BadCase> bad_cases() {
       bad_flags("GridResMalformed", {"--grid-res", "64x32"}),
       bad_flags("GridResNotANumber", {"--grid-res", "big"}),
       bad_flags("GridDensityZero", {"--grid-density", "0"}),
+      // Numbers are never silently changed: NaN and infinities passed CLI11's
+      // ranges, and a negative unsigned value wrapped to 2^64 - 1.
+      bad_flags("GridDensityNaN", {"--grid-density", "nan"}),
+      bad_flags("GridDensityInfinite", {"--grid-density", "inf"}),
+      bad_flags("SeedNegative", {"--seed", "-1"}),
+      bad_flags("SeedOver2To53", {"--seed", "9007199254740992"}),
+      bad_flags("SeedOver2To64", {"--seed", "18446744073709551616"}),
+      bad_flags("GridMaxBytesNegative", {"--grid-max-bytes", "-5"}),
       bad_flags("GridOverMemoryLimit", {"--grid-res", "1024", "--grid-max-bytes", "1000000"}),
       bad_out("OutNotExr", nullptr, [](const fs::path& tmp) { return (tmp / "x.png").string(); }),
       bad_out("OutInMissingFolder", nullptr, [](const fs::path& tmp) { return (tmp / "nope" / "x.exr").string(); }),
@@ -279,6 +287,24 @@ TEST(InternalError, ACalibrationFitItsMeasurementsDoNotDetermineExitsOne) {
   ASSERT_FALSE(r.err_lines().empty());
   EXPECT_EQ(r.err_lines().back().rfind("kappa: internal error: calibration:", 0), 0u) << r.std_err;
   EXPECT_FALSE(fs::exists(tmp / "cal.json"));
+}
+
+TEST(NumberFlags, OtherCommandsRefuseNaNAndKeepTheLargestSeed) {
+  const std::string scene = (assets_dir() / "cornell-box" / "scene.json").string();
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"cast", scene, "--rays", "segments", "--n", "10", "--length", "nan"},
+        {"bench", scene, "--n", "10", "--accel", "grid", "--threads", "1", "--repeat", "1", "--naive-budget", "nan"},
+        {"calibrate", scene, "--n", "100", "--density", "inf"},
+        {"cast", scene, "--n", "10", "--seed", "-1"}}) {
+    SCOPED_TRACE(::testing::PrintToString(args));
+    TempDir tmp;
+    expect_one_line_refusal(run_kappa(args, tmp.path()));
+  }
+  TempDir tmp;
+  const RunResult r = run_kappa({"render", good_scene(), "--spp", "1", "--seed", "9007199254740991", "--out",
+                                 (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.std_err;
+  EXPECT_NE(read_file(tmp / "x.json").find("\"seed\": 9007199254740991"), std::string::npos);
 }
 
 }  // namespace

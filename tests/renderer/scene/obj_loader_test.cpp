@@ -125,5 +125,48 @@ TEST(ObjLoader, Utf8ByteOrderMarkIsSkipped) {
   EXPECT_TRUE(w.empty());
 }
 
+// Numbers are never silently changed: an MTL colour that is not a finite
+// number in range is refused with file:line (tinyobjloader alone read these
+// as 0, switching a light off without a word), and a one-component colour
+// is the grey it means.
+std::string mtl_error(const std::string& mtl_text) {
+  try {
+    Warnings w;
+    load("mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n", w, mtl_text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ObjLoader, MtlColoursThatAreNotFiniteNumbersAreRefusedWithTheirLine) {
+  const struct {
+    const char* mtl;
+    const char* says;
+  } cases[] = {
+      {"newmtl a\nKd 0.5 0.5 0.5\nKe nan 1 1\n", "m.mtl:3: Ke component 'nan' is not finite"},
+      {"newmtl a\nKe inf 1 1\n", "m.mtl:2: Ke component 'inf' is not finite"},
+      {"newmtl a\nKe abc 1 1\n", "m.mtl:2: Ke component 'abc' is not a number"},
+      {"newmtl a\nKd nan\n", "m.mtl:2: Kd component 'nan' is not finite"},
+      {"newmtl a\nKe 1e400 1 1\n", "m.mtl:2: Ke component '1e400' is out of the range of a double"},
+      {"newmtl a\nKe 1e13 1 1\n", "m.mtl:2: Ke component '1e13' exceeds Kappa's limit of 1e+12"},
+      {"newmtl a\nKd 0.5 0.5\n", "m.mtl:2: Kd needs 1 or 3 numbers, found 2"},
+  };
+  for (const auto& c : cases) {
+    const std::string e = mtl_error(c.mtl);
+    EXPECT_NE(e.find(c.says), std::string::npos) << c.mtl << " -> '" << e << "'";
+  }
+}
+
+TEST(ObjLoader, AOneComponentMtlColourIsAGrey) {
+  Warnings w;
+  const Scene s = load("mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n", w,
+                       "newmtl a\nKd 0.25\nKe 2\n");
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_EQ(s.materials[0].albedo, (Vec3f{0.25f, 0.25f, 0.25f}));
+  EXPECT_EQ(s.materials[0].emission, (Vec3f{2, 2, 2}));
+  EXPECT_TRUE(w.empty());
+}
+
 }  // namespace
 }  // namespace kappa

@@ -109,5 +109,31 @@ TEST(SceneLoader, SharedScenesLoad) {
   }
 }
 
+// Numbers are never silently changed: a number that overflows a double was
+// an internal error without the file's name, and a duplicate key silently
+// took its last value. Both are refused with file:line; strings holding
+// braces, colons or escaped quotes do not confuse the check.
+TEST(SceneLoader, OverflowingNumbersAndDuplicateKeysAreRefusedWithTheirLine) {
+  test::TempDir dir;
+  test::write_file(dir / "t.obj", kTriangle);
+  test::write_file(dir / "over.json", "{\"meshes\": [\"t.obj\"],\n \"environment\": [1, -1e400, 1]}\n");
+  EXPECT_NE(error_of(dir / "over.json").find("over.json:2: number '-1e400' does not fit a double"), std::string::npos)
+      << error_of(dir / "over.json");
+  test::write_file(dir / "dup.json", "{\"meshes\": [\"t.obj\"],\n \"environment\": [1, 1, 1],\n \"environment\": [0, 0, 0]}\n");
+  EXPECT_NE(error_of(dir / "dup.json").find("dup.json:3: key 'environment' appears twice"), std::string::npos)
+      << error_of(dir / "dup.json");
+  test::write_file(dir / "nested.json",
+                   "{\"meshes\": [\"t.obj\"], \"camera\": {\"eye\": [0, 0, 5],\n \"look_at\": [0, 0, 0], \"eye\": [0, 0, 4]}}\n");
+  EXPECT_NE(error_of(dir / "nested.json").find("nested.json:2: key 'eye' appears twice"), std::string::npos)
+      << error_of(dir / "nested.json");
+  // The same key in two different objects, and keys inside strings, are fine.
+  test::write_file(dir / "fine.json",
+                   "{\"meshes\": [\"t.obj\"], \"film\": {\"width\": 8, \"height\": 8},\n"
+                   " \"camera\": {\"eye\": [0, 0, 5], \"look_at\": [0, 0, 0], \"up\": [0, 1, 0], \"vfov_deg\": 30},\n"
+                   " \"note {\\\"film\\\": 1}\": \"a: {\\\"width\\\": 2}\"}\n");
+  Warnings w;
+  EXPECT_NO_THROW(load_scene(dir / "fine.json", w)) << error_of(dir / "fine.json");
+}
+
 }  // namespace
 }  // namespace kappa
