@@ -1,6 +1,7 @@
 #include "renderer/scene/scene_loader.h"
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -67,7 +68,12 @@ class FieldReader {
     for (int i = 0; i < 3; ++i) {
       if (!j[i].is_number()) bad(field, expected);
       v[i] = j[i].get<double>();
-      if (!std::isfinite(v[i]) || std::abs(v[i]) > kMaxCoordinate || (non_negative && v[i] < 0)) bad(field, expected);
+      if (!std::isfinite(v[i]) || (non_negative && v[i] < 0)) bad(field, expected);
+      if (std::abs(v[i]) > kMaxCoordinate) {  // finite, but past what single-precision intersection takes
+        char limit[32];
+        std::snprintf(limit, sizeof limit, "%.3g", kMaxCoordinate);
+        fail(m_file, 0, "field '" + field + "': " + j[i].dump() + " exceeds Kappa's limit of " + limit);
+      }
     }
     return {float(v[0]), float(v[1]), float(v[2])};
   }
@@ -153,6 +159,16 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings) {
     if (film.contains("height")) scene.height = field.film_side(film["height"], "film.height");
   }
 
+  // A mesh listed twice is loaded twice: its emitters would count double.
+  for (std::size_t a = 0; a < mesh_paths.size(); ++a)
+    for (std::size_t b = 0; b < a; ++b) {
+      std::error_code ec;
+      if (mesh_paths[a] == mesh_paths[b] || std::filesystem::equivalent(mesh_paths[a], mesh_paths[b], ec)) {
+        warnings.push_back(located(file, 0, "mesh '" + mesh_paths[a].string() +
+                                                "' is listed twice: its triangles, and any emitters, count twice"));
+        break;
+      }
+    }
   for (const auto& mesh : mesh_paths) {
     std::error_code ec;
     // What else the path may be (a FIFO, a device) is refused by the OBJ

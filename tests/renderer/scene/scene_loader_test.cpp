@@ -28,7 +28,9 @@ TEST(SceneLoader, ReadsEveryField) {
     "environment": [0.5, 1, 2], "film": {"width": 20, "height": 10}})");
   Warnings w;
   const Scene s = load_scene(dir / "scene.json", w);
-  EXPECT_TRUE(w.empty());
+  // The mesh listed twice loads twice, with a word: its emitters would count double.
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("is listed twice: its triangles, and any emitters, count twice"), std::string::npos) << w[0];
   EXPECT_EQ(s.triangles.size(), 2u);
   EXPECT_EQ(s.camera.eye, (Vec3f{0, 0, 5}));
   EXPECT_EQ(s.camera.vfov_deg, 30.0f);
@@ -133,6 +135,17 @@ TEST(SceneLoader, OverflowingNumbersAndDuplicateKeysAreRefusedWithTheirLine) {
                    " \"note {\\\"film\\\": 1}\": \"a: {\\\"width\\\": 2}\"}\n");
   Warnings w;
   EXPECT_NO_THROW(load_scene(dir / "fine.json", w)) << error_of(dir / "fine.json");
+}
+
+// Limits said right: a finite value past Kappa's limit says the limit, not
+// "finite".
+TEST(SceneLoader, ValuesPastTheCoordinateLimitSayTheLimit) {
+  test::TempDir dir;
+  test::write_file(dir / "t.obj", kTriangle);
+  test::write_file(dir / "big.json", R"({"meshes": ["t.obj"], "environment": [1, 1e13, 1]})");
+  EXPECT_NE(error_of(dir / "big.json").find("field 'environment': 10000000000000.0 exceeds Kappa's limit of 1e+12"),
+            std::string::npos)
+      << error_of(dir / "big.json");
 }
 
 }  // namespace
