@@ -10,4 +10,12 @@ namespace kappa {
 /// files are refused rather than half-rendered.
 inline constexpr double kMaxCoordinate = 1e12;
 
+/// Smallest triangle kept, by its longest edge. The watertight test's
+/// distance is a product of three coordinates relative to the ray's origin:
+/// for a triangle under about 1e-15 across, seen at its own scale, that
+/// product underflows single precision (1e-45) and no ray can hit it (measured:
+/// a 1e-14 triangle framed by the camera is hit, a 1e-16 one never). Such
+/// triangles are left out with a warning that counts them.
+inline constexpr double kMinTriangleSize = 1e-15;
+
 }  // namespace kappa

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "renderer/scene/mtl_scan.h"
+#include "renderer/scene/obj_limits.h"
 #include "renderer/scene/obj_scan.h"
 
 namespace kappa {
@@ -146,7 +147,7 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
     return Vec3f{attrib.vertices[3 * std::size_t(index)], attrib.vertices[3 * std::size_t(index) + 1],
                  attrib.vertices[3 * std::size_t(index) + 2]};
   };
-  std::size_t zero_area = 0, before = scene.triangles.size();
+  std::size_t zero_area = 0, too_small = 0, before = scene.triangles.size();
   for (const tinyobj::shape_t& shape : shapes) {
     const auto& idx = shape.mesh.indices;
     std::size_t offset = 0;
@@ -163,6 +164,12 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
         ++zero_area;
         continue;
       }
+      const double longest = std::max({length(Vec3d(tri.v1) - Vec3d(tri.v0)), length(Vec3d(tri.v2) - Vec3d(tri.v1)),
+                                       length(Vec3d(tri.v0) - Vec3d(tri.v2))});
+      if (longest < kMinTriangleSize) {
+        ++too_small;
+        continue;
+      }
       const int mat = face < shape.mesh.material_ids.size() ? shape.mesh.material_ids[face] : -1;
       scene.triangles.push_back(tri);
       scene.material_of.push_back(mat >= 0 && std::size_t(mat) < materials.size() ? base + std::uint32_t(mat)
@@ -171,6 +178,10 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
   }
   if (zero_area > 0)
     warnings.push_back(located(obj, 0, std::to_string(zero_area) + " zero-area triangles dropped"));
+  if (too_small > 0)
+    warnings.push_back(located(obj, 0, std::to_string(too_small) +
+                                           " triangles smaller than 1e-15 across dropped: single-precision "
+                                           "intersection cannot hit them"));
   if (scene.triangles.size() == before)
     warnings.push_back(located(obj, 0,
                                "no triangles (" + std::to_string(scan.positions.size()) + " vertices, " +

@@ -168,5 +168,17 @@ TEST(ObjLoader, AOneComponentMtlColourIsAGrey) {
   EXPECT_TRUE(w.empty());
 }
 
+// Limits said right: a triangle too small for single-precision intersection
+// (under 1e-15 across) is left out with a count, not lost without a word; one
+// of 1e-14 is kept (and is hit: the camera framing it sees it).
+TEST(ObjLoader, TrianglesTooSmallToHitAreDroppedWithACount) {
+  Warnings w;
+  const Scene s = load("v 0 0 0\nv 1e-16 0 0\nv 0 1e-16 0\nv 0 0 1\nv 1e-14 0 1\nv 0 1e-14 1\nf 1 2 3\nf 4 5 6\n", w);
+  ASSERT_EQ(s.triangles.size(), 1u);
+  EXPECT_EQ(s.triangles[0].v0.z, 1.0f);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("1 triangles smaller than 1e-15 across dropped"), std::string::npos) << w[0];
+}
+
 }  // namespace
 }  // namespace kappa
