@@ -7,6 +7,7 @@
 #include <optional>
 #include <cstdio>
 #include <sstream>
+#include <type_traits>
 
 #include "accel/byte_size.h"
 #include "accel/factory.h"
@@ -18,6 +19,7 @@
 #include "renderer/io/exr_output.h"
 #include "renderer/io/output_guard.h"
 #include "renderer/render/integrator.h"
+#include "renderer/report/render_record.h"
 #include "renderer/report/render_report.h"
 #include "renderer/report/stats_table.h"
 #include "renderer/scene/scene_loader.h"
@@ -135,24 +137,26 @@ int run_render(const RenderOptions& options) {
     std::fprintf(stderr, "kappa: warning: %llu samples had non-finite radiance and were replaced by 0\n",
                  static_cast<unsigned long long>(result.rejected_samples));
 
-  const Metadata metadata = {
-      {"Software", std::string("Kappa ") + version_string()},
-      {"kappa:version", std::string(version_string())},
-      {"kappa:scene", scene.source.string()},
-      {"kappa:spp", options.spp},
-      {"kappa:seed", std::to_string(options.seed)},
-      {"kappa:accel", std::string(accel->name())},
-      {"kappa:max_depth", options.max_depth},
-      {"kappa:rr_depth", settings.rr_depth},
-      {"kappa:threads", threads},
-      {"kappa:render_time_s", float(result.seconds)},
-      {"kappa:accel_build_s", float(build_s)},
-      {"kappa:grid_res", resolution_text(*accel)},
-      {"kappa:rays", std::to_string(result.rays)},
-  };
+  // Every setting that changes the image, from one record, in both the EXR
+  // header and the report; then what the run measured.
+  const RenderRecord record = render_record(options, scene, resolution_text(*accel));
+  Metadata metadata = {{"Software", std::string("Kappa ") + version_string()},
+                       {"kappa:version", std::string(version_string())}};
+  for (const auto& [key, value] : record)
+    std::visit(
+        [&, k = "kappa:" + key](const auto& v) {
+          if constexpr (std::is_same_v<std::decay_t<decltype(v)>, bool>) metadata.emplace_back(k, int(v));
+          else metadata.emplace_back(k, v);
+        },
+        value);
+  metadata.insert(metadata.end(), {{"kappa:threads", threads},
+                                   {"kappa:render_time_s", result.seconds},
+                                   {"kappa:accel_build_s", build_s},
+                                   {"kappa:rays", double(result.rays)}});
   write_exr(output.temp_path(), film, metadata);
-  const nlohmann::ordered_json report = render_report(
-      scene, *accel, FrameFacts{scene.width, scene.height, options.spp, threads, options.seed}, result, calibration);
+  const nlohmann::ordered_json report =
+      render_report(scene, *accel, FrameFacts{scene.width, scene.height, options.spp, threads, options.seed}, result,
+                    calibration, to_json(record));
 
   if (cell_map_out && result.counters) {
     if (result.counters->classes[0].per_cell()) {

@@ -2,6 +2,8 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <type_traits>
+
 #include "renderer/util/error.h"
 
 namespace kappa {
@@ -39,7 +41,12 @@ void write_exr(const std::filesystem::path& path, const Film& film, const Metada
   spec.z_channel = film.depth.empty() ? -1 : int(film.cost_cells.empty() ? nc - 1 : nc - 3);
   spec.attribute("compression", "zip");
   for (const auto& [key, value] : metadata) {
-    std::visit([&, k = key](const auto& v) { spec.attribute(k, v); }, value);
+    std::visit(
+        [&, k = key](const auto& v) {
+          if constexpr (std::is_same_v<std::decay_t<decltype(v)>, double>) spec.attribute(k, OIIO::TypeDesc::DOUBLE, &v);
+          else spec.attribute(k, v);
+        },
+        value);
   }
 
   auto out = OIIO::ImageOutput::create("openexr");

@@ -12,7 +12,7 @@
 
 namespace kappa {
 
-using MetadataValue = std::variant<std::string, int, float>;
+using MetadataValue = std::variant<std::string, int, float, double>;
 using Metadata = std::vector<std::pair<std::string, MetadataValue>>;
 
 /// Channel names in file order: R, G, B, then albedo.{R,G,B}, normal.{X,Y,Z},

@@ -28,7 +28,8 @@ ClassSummary summary(const ClassTotals& totals, std::uint64_t per_cell_rays, std
 }  // namespace
 
 nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& accel, const FrameFacts& frame,
-                                     const RenderResult& result, const std::optional<Calibration>& calibration) {
+                                     const RenderResult& result, const std::optional<Calibration>& calibration,
+                                     const nlohmann::ordered_json& settings) {
   nlohmann::ordered_json j = report_header(scene, accel);
   j["render"] = {{"width", frame.width},
                  {"height", frame.height},
@@ -37,7 +38,8 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
                  {"seed", frame.seed},
                  {"time_s", result.seconds},
                  {"rays", result.rays},
-                 {"mrays_per_s", result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0}};
+                 {"mrays_per_s", result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0},
+                 {"settings", settings}};
   if (nlohmann::ordered_json section = accel_section(accel, scene.triangles); !section.is_null())
     j[std::string(accel.name())] = std::move(section);
   const CellLayout* cells = accel.cells();

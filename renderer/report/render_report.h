@@ -19,6 +19,7 @@ struct FrameFacts {
 /// The report; `cost` is filled when a calibration is given and counters ran:
 /// eq 10's predicted traversal time (thread-seconds) beside the measured one.
 nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& accel, const FrameFacts& frame,
-                                     const RenderResult& result, const std::optional<Calibration>& calibration = {});
+                                     const RenderResult& result, const std::optional<Calibration>& calibration = {},
+                                     const nlohmann::ordered_json& settings = nullptr);
 
 }  // namespace kappa

@@ -1,0 +1,47 @@
+#include "renderer/report/render_record.h"
+
+#include <cstdio>
+
+#include "accel/input_file.h"
+
+namespace kappa {
+
+std::string input_hash(const Scene& scene) {
+  std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a 64
+  for (const auto& file : scene.inputs) {
+    for (unsigned char c : read_input_file(file, "an input file")) {
+      h ^= c;
+      h *= 0x100000001b3ull;
+    }
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+RenderRecord render_record(const RenderOptions& options, const Scene& scene, const std::string& grid_res) {
+  return {
+      {"scene", scene.source.string()},
+      {"input_hash", input_hash(scene)},
+      {"accel", options.accel},
+      {"grid_res", grid_res},
+      {"width", scene.width},
+      {"height", scene.height},
+      {"spp", options.spp},
+      {"max_depth", options.max_depth},
+      {"rr_depth", options.rr_depth},
+      {"russian_roulette", !options.no_rr},
+      {"seed", double(options.seed)},
+      {"aov", options.aov},
+      {"stats", options.stats},
+      {"cell_sample", options.cell_sample},
+  };
+}
+
+nlohmann::ordered_json to_json(const RenderRecord& record) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const auto& [key, value] : record) std::visit([&, k = key](const auto& v) { j[k] = v; }, value);
+  return j;
+}
+
+}  // namespace kappa
