@@ -75,10 +75,9 @@ int run_bench(const BenchOptions& options) {
   for (const auto& r : options.rays) classes.push_back(parse_ray_class(r));
   Warnings warnings;
   const Scene scene = load_scene(options.scene, warnings);
-  for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", printable_line(w).c_str());
+  print_warnings(warnings);
   refuse_outputs_over_inputs({options.json}, scene.inputs);
-  std::unique_ptr<AtomicOutput> json_out;
-  if (!options.json.empty()) json_out = std::make_unique<AtomicOutput>(options.json);
+  const auto json_out = optional_output(options.json);
   const std::size_t N = scene.triangles.size();
 
   // Ray sets first, from the grid (any exact accelerator gives the same rays).

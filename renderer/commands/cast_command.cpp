@@ -31,10 +31,9 @@ int run_cast(const CastOptions& options) {
 
   Warnings warnings;
   const Scene scene = load_scene(options.scene, warnings);
-  for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", printable_line(w).c_str());
+  print_warnings(warnings);
   refuse_outputs_over_inputs({options.report}, scene.inputs);
-  std::unique_ptr<AtomicOutput> report_out;
-  if (!options.report.empty()) report_out = std::make_unique<AtomicOutput>(options.report);
+  const auto report_out = optional_output(options.report);
 
   const auto accel = make_accelerator(options.accel, scene.triangles, options.build);
   const CellLayout* cells = accel->cells();

@@ -89,7 +89,7 @@ int run_render(const RenderOptions& options) {
   const ThreadLimit thread_limit(options.threads);
   Warnings warnings;
   Scene scene = load_scene(options.scene, warnings);
-  for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", printable_line(w).c_str());
+  print_warnings(warnings);
   if (options.width > 0) scene.width = options.width;
   if (options.height > 0) scene.height = options.height;
   if (scene.camera_framed)  // frame again for the film's final aspect ratio
@@ -105,9 +105,8 @@ int run_render(const RenderOptions& options) {
   inputs.push_back(calibration_path);
   refuse_outputs_over_inputs({out_path, options.report, options.cell_map}, inputs);
   AtomicOutput output(out_path, OutputKind::image);
-  std::unique_ptr<AtomicOutput> report_out, cell_map_out;
-  if (!options.report.empty()) report_out = std::make_unique<AtomicOutput>(options.report);
-  if (!options.cell_map.empty()) cell_map_out = std::make_unique<AtomicOutput>(options.cell_map, OutputKind::image);
+  const auto report_out = optional_output(options.report);
+  const auto cell_map_out = optional_output(options.cell_map, OutputKind::image);
   // The calibration too is read now: a bad file must not cost a finished render.
   const std::optional<Calibration> calibration = load_calibration(calibration_path);
   if (!calibration && !options.calibration.empty())

@@ -118,6 +118,10 @@ AtomicOutput::~AtomicOutput() {
   if (m_slot >= 0) release_slot(m_slot);
 }
 
+std::unique_ptr<AtomicOutput> optional_output(const std::filesystem::path& target, OutputKind kind) {
+  return target.empty() ? nullptr : std::make_unique<AtomicOutput>(target, kind);
+}
+
 void write_and_commit(AtomicOutput& output, const std::string& text) {
   {
     std::ofstream out(output.temp_path(), std::ios::binary);

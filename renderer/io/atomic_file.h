@@ -8,6 +8,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 
 namespace kappa {
@@ -39,6 +40,9 @@ class AtomicOutput {
   int m_slot = -1;  ///< entry in the signal handler's cleanup table
   bool m_committed = false;
 };
+
+/// The output at `target`, or none when no path was given (an output not asked for).
+std::unique_ptr<AtomicOutput> optional_output(const std::filesystem::path& target, OutputKind kind = OutputKind::text);
 
 /// Writes `text` to the output's temporary and commits it (throws InputError).
 void write_and_commit(AtomicOutput& output, const std::string& text);

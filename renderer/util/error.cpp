@@ -1,5 +1,7 @@
 #include "renderer/util/error.h"
 
+#include <cstdio>
+
 
 namespace kappa {
 
@@ -33,6 +35,10 @@ std::size_t utf8_sequence_length(const std::string& s, std::size_t i) {
 }
 
 }  // namespace
+
+void print_warnings(const Warnings& warnings) {
+  for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", printable_line(w).c_str());
+}
 
 std::string printable_line(const std::string& message) {
   std::string out;

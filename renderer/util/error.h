@@ -27,4 +27,7 @@ std::string printable_line(const std::string& message);
 /// Warnings gathered while loading, printed by the caller (and inspected by tests).
 using Warnings = std::vector<std::string>;
 
+/// Prints each warning as one "kappa: warning: ..." line on stderr.
+void print_warnings(const Warnings& warnings);
+
 }  // namespace kappa
