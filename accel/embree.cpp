@@ -61,7 +61,7 @@ void to_embree(const Ray& r, RTCRay& e) {
 
 }  // namespace
 
-EmbreeAccelerator::EmbreeAccelerator(std::span<const Triangle> triangles) {
+EmbreeAccelerator::EmbreeAccelerator(std::span<const Triangle> triangles, TaskProgress* progress) {
   const auto start = std::chrono::steady_clock::now();
   m_device = rtcNewDevice(nullptr);
   if (!m_device) {
@@ -121,6 +121,16 @@ EmbreeAccelerator::EmbreeAccelerator(std::span<const Triangle> triangles) {
     // later parallel_for from this thread (the whole render) would run with
     // them. A no-op parallel_for first makes TBB capture the caller's own.
     tbb::parallel_for(0, 1, [](int) {});
+    if (progress) {
+      progress->begin("embree: building the BVH", 1000);
+      rtcSetSceneProgressMonitorFunction(
+          m_scene,
+          [](void* task, double fraction) {
+            static_cast<TaskProgress*>(task)->set(std::uint64_t(fraction * 1000), 1000);
+            return true;  // never cancel
+          },
+          progress);
+    }
     rtcCommitScene(m_scene);
     check("building the BVH");
   } catch (...) {

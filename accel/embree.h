@@ -21,13 +21,15 @@
 #include <string>
 
 #include "accel.h"
+#include "task_progress.h"
 
 namespace kappa {
 
 class EmbreeAccelerator final : public Accelerator {
  public:
   /// Builds the BVH. Throws std::runtime_error (one line) if Embree fails.
-  explicit EmbreeAccelerator(std::span<const Triangle> triangles);
+  /// Reports the BVH build to `progress`, if given, as a fraction of 1000.
+  explicit EmbreeAccelerator(std::span<const Triangle> triangles, TaskProgress* progress = nullptr);
   ~EmbreeAccelerator() override;
   EmbreeAccelerator(const EmbreeAccelerator&) = delete;  // Embree holds `this` in its callbacks
   EmbreeAccelerator& operator=(const EmbreeAccelerator&) = delete;

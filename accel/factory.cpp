@@ -22,10 +22,10 @@ GridOptions grid_options(const AccelOptions& options) {
 std::vector<std::string> accelerator_names() { return {"embree", "grid", "naive"}; }
 
 std::unique_ptr<Accelerator> make_accelerator(std::string_view name, std::span<const Triangle> triangles,
-                                              const AccelOptions& options) {
+                                              const AccelOptions& options, TaskProgress* progress) {
   if (name == "naive") return std::make_unique<NaiveAccelerator>(triangles);
-  if (name == "embree") return std::make_unique<EmbreeAccelerator>(triangles);
-  if (name == "grid") return std::make_unique<UniformGrid>(triangles, grid_options(options));
+  if (name == "embree") return std::make_unique<EmbreeAccelerator>(triangles, progress);
+  if (name == "grid") return std::make_unique<UniformGrid>(triangles, grid_options(options), progress);
   throw InputError("unknown accelerator '" + std::string(name) + "'");
 }
 

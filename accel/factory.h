@@ -12,6 +12,7 @@
 
 #include "accel.h"
 #include "grid.h"
+#include "task_progress.h"
 
 namespace kappa {
 
@@ -37,7 +38,8 @@ std::vector<std::string> accelerator_names();
 /// Builds the accelerator called `name` over `triangles` (which must outlive
 /// it). Throws InputError for an unknown name or options the
 /// accelerator refuses (e.g. a grid over its memory limit).
+/// Reports the build's phases to `progress`, if given.
 std::unique_ptr<Accelerator> make_accelerator(std::string_view name, std::span<const Triangle> triangles,
-                                              const AccelOptions& options = {});
+                                              const AccelOptions& options = {}, TaskProgress* progress = nullptr);
 
 }  // namespace kappa

@@ -19,6 +19,7 @@
 #include "accel.h"
 #include "cell_layout.h"
 #include "grid_resolution.h"
+#include "task_progress.h"
 
 namespace kappa {
 
@@ -66,7 +67,8 @@ class UniformGrid final : public Accelerator, public CellLayout {
  public:
   /// Throws InputError if the grid would exceed options.max_bytes
   /// or 2^32 - 1 cells or references.
-  UniformGrid(std::span<const Triangle> triangles, const GridOptions& options);
+  /// Reports its passes to `progress`, if given.
+  UniformGrid(std::span<const Triangle> triangles, const GridOptions& options, TaskProgress* progress = nullptr);
 
   std::optional<Hit> closest_hit(const Ray& ray) const override;
   bool any_hit(const Ray& ray) const override;

@@ -1,5 +1,6 @@
 // Building the uniform grid: bounds, resolution, then two parallel passes
 // over the triangles (count per cell, then fill) into compressed rows.
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <unistd.h>
 
@@ -15,38 +16,18 @@
 #include "check.h"
 #include "grid.h"
 #include "input_error.h"
-#include "triangle_box.h"
+#include "grid_insert.h"
 
 namespace kappa {
 namespace {
 
-/// Calls f(cell index) for every cell of `grid` that triangle t overlaps.
+/// f(k) for k in [0, n) in parallel, counting each chunk done.
 template <typename F>
-void for_each_overlapped_cell(const GridInfo& grid, const Vec3d& inv_cell, const Triangle& t, F&& f) {
-  const Vec3d v0(t.v0), v1(t.v1), v2(t.v2);
-  const Vec3d tlo = min(v0, min(v1, v2)), thi = max(v0, max(v1, v2));
-  int lo[3], hi[3];
-  for (int a = 0; a < 3; ++a) {
-    const int n = grid.resolution[a];
-    // The margin, plus one cell of slack each way; the overlap test decides.
-    const double reach = grid.margin * inv_cell[a] + 1.0;
-    lo[a] = int(std::clamp(std::floor((tlo[a] - grid.lo[a]) * inv_cell[a] - reach), 0.0, double(n - 1)));
-    hi[a] = int(std::clamp(std::floor((thi[a] - grid.lo[a]) * inv_cell[a] + reach), 0.0, double(n - 1)));
-  }
-  const Vec3d margin{grid.margin, grid.margin, grid.margin};
-  for (int z = lo[2]; z <= hi[2]; ++z) {
-    for (int y = lo[1]; y <= hi[1]; ++y) {
-      for (int x = lo[0]; x <= hi[0]; ++x) {
-        const Vec3d cell_lo{grid.lo.x + x * grid.cell_size.x, grid.lo.y + y * grid.cell_size.y,
-                            grid.lo.z + z * grid.cell_size.z};
-        const Vec3d cell_hi{x + 1 == grid.resolution.nx ? grid.hi.x : cell_lo.x + grid.cell_size.x,
-                            y + 1 == grid.resolution.ny ? grid.hi.y : cell_lo.y + grid.cell_size.y,
-                            z + 1 == grid.resolution.nz ? grid.hi.z : cell_lo.z + grid.cell_size.z};
-        if (triangle_overlaps_box(v0, v1, v2, cell_lo - margin, cell_hi + margin))
-          f(std::uint64_t(x) + std::uint64_t(grid.resolution.nx) * (std::uint64_t(y) + std::uint64_t(grid.resolution.ny) * std::uint64_t(z)));
-      }
-    }
-  }
+void for_each_chunk(std::size_t n, TaskProgress* progress, F&& f) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t k = range.begin(); k != range.end(); ++k) f(k);
+    advance(progress, range.size());
+  });
 }
 
 }  // namespace
@@ -57,7 +38,8 @@ std::uint64_t default_grid_max_bytes() {
   return std::uint64_t(pages) * std::uint64_t(page) / 4;
 }
 
-UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions& options) : m_triangles(triangles) {
+UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions& options, TaskProgress* progress)
+    : m_triangles(triangles) {
   const auto start = std::chrono::steady_clock::now();
   if (triangles.size() >= std::size_t(kNoTriangle)) throw InputError("grid: more than 2^32 - 1 triangles");
 
@@ -116,7 +98,8 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
 
   // Pass 1: count the triangles of each cell.
   m_offsets.assign(cells + 1, 0);
-  tbb::parallel_for(std::size_t(0), usable_ids.size(), [&](std::size_t k) {
+  begin_phase(progress, "grid " + m_info.resolution.to_string() + ": counting cells", usable_ids.size());
+  for_each_chunk(usable_ids.size(), progress, [&](std::size_t k) {
     for_each_overlapped_cell(m_info, m_inv_cell, triangles[usable_ids[k]], [&](std::uint64_t c) {
       std::atomic_ref<std::uint32_t>(m_offsets[c]).fetch_add(1, std::memory_order_relaxed);
     });
@@ -147,7 +130,8 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
   // depend on scheduling.
   m_refs.resize(total);
   std::vector<std::uint32_t> cursor(m_offsets.begin(), m_offsets.end() - 1);
-  tbb::parallel_for(std::size_t(0), usable_ids.size(), [&](std::size_t k) {
+  begin_phase(progress, "grid " + m_info.resolution.to_string() + ": filling cells", usable_ids.size());
+  for_each_chunk(usable_ids.size(), progress, [&](std::size_t k) {
     const TriangleId id = usable_ids[k];
     for_each_overlapped_cell(m_info, m_inv_cell, triangles[id], [&](std::uint64_t c) {
       const std::uint32_t slot = std::atomic_ref<std::uint32_t>(cursor[c]).fetch_add(1, std::memory_order_relaxed);

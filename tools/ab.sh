@@ -11,7 +11,8 @@
 # --flags-a / --flags-b, which are appended to that side's arguments). The
 # figures depend on the subcommand:
 #   render  render.time_s from the report (the render passes only; load and
-#           build are outside it): ab.sh adds --report and compares seconds
+#           build are outside it), and the accelerator's build_s beside it:
+#           ab.sh adds --report and compares seconds
 #   bench   every accel x rays x threads row's Mrays/s median, from --json
 #   other   the wall time of the whole command
 # The ratio is always speed B / speed A: above 1, B is faster.
@@ -92,7 +93,12 @@ def figures(side, r):
     base = os.path.join(tmp, f"{side}.{r}")
     if subcommand == "render":
         with open(base + ".report.json") as f:
-            return {"render.time_s": (json.load(f)["render"]["time_s"], False)}
+            report = json.load(f)
+        out = {"render.time_s": (report["render"]["time_s"], False)}
+        build_s = report.get(report.get("accel", ""), {}).get("build_s")
+        if build_s is not None:
+            out[report["accel"] + ".build_s"] = (build_s, False)
+        return out
     if subcommand == "bench":
         with open(base + ".bench.json") as f:
             rows = json.load(f)["results"]

@@ -92,7 +92,7 @@ CLI::App* add_cast_command(CLI::App& app, CastOptions& o) {
       ->check(finite_number(1e-300, 1e300));
   cast.add_option("--threads", o.threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   cast.add_option("--report", o.report, "write the JSON report here");
-  cast.add_flag("-q,--quiet", o.quiet, "no table on stdout");
+  cast.add_flag("-q,--quiet", o.quiet, "no progress line on a terminal, no table on stdout");
   return &cast;
 }
 

@@ -12,6 +12,7 @@
 
 #include "accel/factory.h"
 #include "accel/dispatch.h"
+#include "renderer/cli/progress.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/output_guard.h"
 #include "renderer/render/ray_sets.h"
@@ -73,15 +74,19 @@ double median_of(std::vector<double> v) {
 int run_bench(const BenchOptions& options) {
   std::vector<RayClass> classes;
   for (const auto& r : options.rays) classes.push_back(parse_ray_class(r));
+  const bool show_progress = progress_wanted(false);
   Warnings warnings;
-  const Scene scene = load_scene(options.scene, warnings);
+  const Scene scene =
+      with_progress(show_progress, [&](TaskProgress* progress) { return load_scene(options.scene, warnings, progress); });
   print_warnings(warnings);
   refuse_outputs_over_inputs({options.json}, scene.inputs);
   const auto json_out = optional_output(options.json);
   const std::size_t N = scene.triangles.size();
 
   // Ray sets first, from the grid (any exact accelerator gives the same rays).
-  const auto reference = make_accelerator("grid", scene.triangles, options.build);
+  const auto reference = with_progress(show_progress, [&](TaskProgress* progress) {
+    return make_accelerator("grid", scene.triangles, options.build, progress);
+  });
   std::vector<RaySet> sets;
   for (RayClass c : classes) sets.push_back(make_ray_set(c, scene, *reference, options.n, options.seed));
 
@@ -104,7 +109,9 @@ int run_bench(const BenchOptions& options) {
       }
     }
     const auto start = std::chrono::steady_clock::now();
-    Built b{name, make_accelerator(name, scene.triangles, options.build)};
+    Built b{name, with_progress(show_progress, [&](TaskProgress* progress) {
+              return make_accelerator(name, scene.triangles, options.build, progress);
+            })};
     b.build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     b.bytes = b.accel->bytes();
     built.push_back(std::move(b));

@@ -12,6 +12,7 @@
 #include "accel/cell_layout.h"
 #include "accel/dispatch.h"
 #include "accel/thread_limit.h"
+#include "renderer/cli/progress.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/output_guard.h"
 #include "renderer/render/ray_sets.h"
@@ -29,13 +30,17 @@ namespace kappa {
 int run_cast(const CastOptions& options) {
   const ThreadLimit thread_limit(options.threads);
 
+  const bool show_progress = progress_wanted(options.quiet);
   Warnings warnings;
-  const Scene scene = load_scene(options.scene, warnings);
+  const Scene scene =
+      with_progress(show_progress, [&](TaskProgress* progress) { return load_scene(options.scene, warnings, progress); });
   print_warnings(warnings);
   refuse_outputs_over_inputs({options.report}, scene.inputs);
   const auto report_out = optional_output(options.report);
 
-  const auto accel = make_accelerator(options.accel, scene.triangles, options.build);
+  const auto accel = with_progress(show_progress, [&](TaskProgress* progress) {
+    return make_accelerator(options.accel, scene.triangles, options.build, progress);
+  });
   const CellLayout* cells = accel->cells();
   const std::optional<Vec3d> cell_size = cells ? cells->uniform_cell_size() : std::nullopt;
 

@@ -87,8 +87,11 @@ int run_render(const RenderOptions& options) {
 
   // --threads limits loading, the accelerator's build and the render alike.
   const ThreadLimit thread_limit(options.threads);
+  // Progress lines while loading and building, erased when each is done.
+  const bool show_progress = progress_wanted(options.quiet);
   Warnings warnings;
-  Scene scene = load_scene(options.scene, warnings);
+  Scene scene =
+      with_progress(show_progress, [&](TaskProgress* progress) { return load_scene(options.scene, warnings, progress); });
   print_warnings(warnings);
   if (options.width > 0) scene.width = options.width;
   if (options.height > 0) scene.height = options.height;
@@ -113,7 +116,9 @@ int run_render(const RenderOptions& options) {
     throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
 
   const auto build_start = std::chrono::steady_clock::now();
-  const std::unique_ptr<Accelerator> accel = make_accelerator(options.accel, scene.triangles, options.build);
+  const std::unique_ptr<Accelerator> accel = with_progress(show_progress, [&](TaskProgress* progress) {
+    return make_accelerator(options.accel, scene.triangles, options.build, progress);
+  });
   const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   RenderSettings settings;
@@ -128,7 +133,8 @@ int run_render(const RenderOptions& options) {
   const int threads = active_threads();
 
   Film film(scene.width, scene.height, aov);
-  ProgressBar bar(!options.quiet && ::isatty(STDERR_FILENO));
+  ProgressBar bar(show_progress);
+  begin_phase(bar.task(), "rendering", 0);
   const RenderResult result =
       render(scene, *accel, settings, film, [&bar](std::size_t done, std::size_t total) { bar.update(done, total); });
   bar.finish();

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <istream>
 #include <sstream>
+#include <streambuf>
 
 #include "renderer/scene/mtl_scan.h"
 #include "renderer/scene/obj_limits.h"
@@ -61,6 +63,32 @@ std::uint32_t default_material(Scene& scene) {
   return std::uint32_t(scene.materials.size() - 1);
 }
 
+/// Serves the checked text to tinyobjloader a megabyte at a time, counting
+/// each chunk as parsed: the parse's progress without touching its code.
+class CountingTextBuffer : public std::streambuf {
+ public:
+  CountingTextBuffer(const std::string& text, TaskProgress* progress) : m_text(text), m_progress(progress) {}
+
+ protected:
+  int_type underflow() override {
+    if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
+    if (m_next >= m_text.size()) return traits_type::eof();
+    const std::size_t n = std::min(kChunk, m_text.size() - m_next);
+    // std::streambuf wants char*; tinyobjloader only reads (no putback).
+    char* begin = const_cast<char*>(m_text.data()) + m_next;
+    setg(begin, begin, begin + n);
+    m_next += n;
+    advance(m_progress, n);
+    return traits_type::to_int_type(*gptr());
+  }
+
+ private:
+  static constexpr std::size_t kChunk = std::size_t(1) << 20;
+  const std::string& m_text;
+  TaskProgress* m_progress;
+  std::size_t m_next = 0;
+};
+
 /// Hands tinyobjloader the text of the material libraries already read and
 /// checked, by the name the OBJ's `mtllib` gives.
 class CheckedMaterialReader : public tinyobj::MaterialReader {
@@ -81,8 +109,8 @@ class CheckedMaterialReader : public tinyobj::MaterialReader {
 
 }  // namespace
 
-void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings) {
-  const ObjScan scan = scan_obj(obj, warnings);
+void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings, TaskProgress* progress) {
+  const ObjScan scan = scan_obj(obj, warnings, progress);
   const std::filesystem::path dir = obj.parent_path();
   scene.inputs.push_back(obj);
 
@@ -117,7 +145,9 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
   std::string tiny_warn, tiny_err;
-  std::istringstream text(scan.text);
+  begin_phase(progress, "parsing " + obj.filename().string(), scan.text.size());
+  CountingTextBuffer text_buffer(scan.text, progress);
+  std::istream text(&text_buffer);
   CheckedMaterialReader mtl_reader(libraries);
   // Problems tinyobjloader warns about were already reported by the scan, in
   // Kappa's words and with line numbers, so its own warning text is not repeated.

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "accel/task_progress.h"
 #include "renderer/scene/scene.h"
 #include "renderer/util/error.h"
 
@@ -13,6 +14,6 @@ namespace kappa {
 
 /// Appends the triangles and materials of `obj` to `scene`. Zero-area triangles
 /// are dropped (with a warning). Throws InputError on refused input.
-void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings);
+void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings, TaskProgress* progress = nullptr);
 
 }  // namespace kappa

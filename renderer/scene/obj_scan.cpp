@@ -11,6 +11,9 @@
 namespace kappa {
 namespace {
 
+/// Bytes scanned between progress reports: a few hundred reports for a big mesh.
+constexpr std::size_t kProgressBytes = std::size_t(1) << 20;
+
 bool parse_integer(std::string_view tok, long long& out) {
   const char* b = tok.data();
   const char* e = b + tok.size();
@@ -47,7 +50,8 @@ struct WarningTally {
 
 class Scanner {
  public:
-  Scanner(const std::filesystem::path& file, Warnings& warnings) : m_file(file), m_warnings(warnings) {}
+  Scanner(const std::filesystem::path& file, Warnings& warnings, TaskProgress* progress)
+      : m_file(file), m_warnings(warnings), m_progress(progress) {}
 
   ObjScan run(const std::string& bytes) {
     check_encoding(bytes);
@@ -55,7 +59,12 @@ class Scanner {
     std::size_t line_no = 0;
     // A UTF-8 byte-order mark is not part of the first statement.
     std::size_t start = bytes.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
+    std::size_t reported = 0;
     while (start < bytes.size()) {
+      if (start - reported >= kProgressBytes) {
+        advance(m_progress, start - reported);
+        reported = start;
+      }
       std::size_t end = bytes.find('\n', start);
       if (end == std::string::npos) end = bytes.size();
       std::string_view line(bytes.data() + start, end - start);
@@ -234,6 +243,7 @@ class Scanner {
 
   const std::filesystem::path& m_file;
   Warnings& m_warnings;
+  TaskProgress* m_progress;
   ObjScan m_scan;
   long long m_total_vertices = 0;  ///< `v` statements in the whole file
   WarningTally m_short_faces, m_unknown, m_non_faces;
@@ -268,9 +278,11 @@ std::vector<std::string_view> split_ws(std::string_view s) {
   return out;
 }
 
-ObjScan scan_obj(const std::filesystem::path& file, Warnings& warnings) {
+ObjScan scan_obj(const std::filesystem::path& file, Warnings& warnings, TaskProgress* progress) {
+  begin_phase(progress, "reading " + file.filename().string(), 0);
   const std::string bytes = read_input_file(file, "an OBJ file");
-  return Scanner(file, warnings).run(bytes);
+  begin_phase(progress, "checking " + file.filename().string(), bytes.size());
+  return Scanner(file, warnings, progress).run(bytes);
 }
 
 }  // namespace kappa

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "accel/task_progress.h"
 #include "accel/vec3.h"
 #include "renderer/util/error.h"
 
@@ -31,8 +32,8 @@ struct ObjScan {
 };
 
 /// Reads and checks `file`. Throws InputError (file:line) for what Kappa
-/// refuses; appends warnings for what it skips.
-ObjScan scan_obj(const std::filesystem::path& file, Warnings& warnings);
+/// refuses; appends warnings for what it skips; reports its bytes done.
+ObjScan scan_obj(const std::filesystem::path& file, Warnings& warnings, TaskProgress* progress = nullptr);
 
 /// Strict number: the whole token must be a decimal floating-point literal
 /// (an optional leading '+' is allowed, as OBJ writers emit it).

@@ -114,7 +114,7 @@ void check_camera(const std::filesystem::path& file, const CameraSpec& c) {
   if (!(length(right) > 1e-6)) fail(file, 0, "camera: 'up' is parallel to the viewing direction");
 }
 
-Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings) {
+Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings, TaskProgress* progress) {
   const std::string text = read_input_file(file, "a scene file");
   const json root = parse_json(file, text);
   const FieldReader field(file);
@@ -174,7 +174,7 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings) {
     // What else the path may be (a FIFO, a device) is refused by the OBJ
     // reader's input check, naming the mesh.
     if (!std::filesystem::exists(mesh, ec)) fail(file, 0, "mesh '" + mesh.string() + "' not found");
-    load_obj(mesh, scene, warnings);
+    load_obj(mesh, scene, warnings, progress);
   }
   if (!has_camera) {
     scene.camera = framing_camera(scene.bounds(), 39.3077f, float(scene.width) / float(scene.height));
@@ -183,12 +183,12 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings) {
   return scene;
 }
 
-Scene load_obj_scene(const std::filesystem::path& file, Warnings& warnings) {
+Scene load_obj_scene(const std::filesystem::path& file, Warnings& warnings, TaskProgress* progress) {
   Scene scene;
   scene.source = file;
   scene.name = scene_name(file);
   scene.environment = {1, 1, 1};
-  load_obj(file, scene, warnings);
+  load_obj(file, scene, warnings, progress);
   if (!scene.triangles.empty()) {
     scene.camera = framing_camera(scene.bounds(), 39.3077f, float(scene.width) / float(scene.height));
     scene.camera_framed = true;
@@ -213,15 +213,15 @@ std::string scene_name(const std::filesystem::path& file) {
   return stem.empty() ? std::string("scene") : stem;
 }
 
-Scene load_scene(const std::filesystem::path& file, Warnings& warnings) {
+Scene load_scene(const std::filesystem::path& file, Warnings& warnings, TaskProgress* progress) {
   Warnings pending;  // printed only if the scene loads: a refusal is one line
   check_input_file(file, "a scene file");
   const std::string ext = lower_extension(file);
   Scene scene;
   if (ext == ".json") {
-    scene = load_json_scene(file, pending);
+    scene = load_json_scene(file, pending, progress);
   } else if (ext == ".obj") {
-    scene = load_obj_scene(file, pending);
+    scene = load_obj_scene(file, pending, progress);
   } else {
     fail(file, 0, "unsupported scene format '" + ext + "' (expected .json or .obj)");
   }

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "accel/task_progress.h"
 #include "renderer/scene/scene.h"
 #include "renderer/util/error.h"
 
@@ -11,7 +12,7 @@ namespace kappa {
 
 /// Throws InputError naming the file (and line) for refused input; warnings
 /// are appended to `warnings` only when loading succeeds in the end.
-Scene load_scene(const std::filesystem::path& file, Warnings& warnings);
+Scene load_scene(const std::filesystem::path& file, Warnings& warnings, TaskProgress* progress = nullptr);
 
 /// The default output name: the folder name for "scene.json", else the file stem.
 std::string scene_name(const std::filesystem::path& file);

@@ -15,6 +15,8 @@ line=$(grep '^render.time_s ' <<<"$out") || fail "no render.time_s row: $out"
 # 64 spp against 1 spp: B is slower, so its speed ratio is below 1.
 ratio=$(awk '{print $NF}' <<<"$line")
 awk -v r="$ratio" 'BEGIN { exit !(r > 0 && r < 1) }' || fail "64 spp against 1 spp read as speed ratio $ratio"
+# The build is timed apart from the render, and the same in both sides' settings.
+grep -q '^grid.build_s ' <<<"$out" || fail "no grid.build_s row: $out"
 
 out=$("$ab" -n 1 "$kappa" "$kappa" -- bench "$scene" --accel grid,naive --rays camera,shadow --threads 1 --repeat 1 --n 256)
 for row in "grid camera 1t Mrays/s" "grid shadow 1t Mrays/s" "naive camera 1t Mrays/s"; do
