@@ -57,7 +57,8 @@ struct GridInfo {
   std::uint64_t N = 0;    ///< triangles in the grid
   std::uint64_t degenerate = 0;  ///< zero-area or non-finite triangles left out
   std::uint64_t theta_tot = 0;   ///< total occupancy = total multiplicity M (eq 13)
-  std::uint32_t max_occupancy = 0;  ///< largest Theta_i
+  std::uint32_t max_occupancy = 0;  ///< largest Theta_i (the report's theta_max)
+  std::uint64_t max_multiplicity = 0;  ///< the most cells any one triangle is in (largest M_j, eq 13)
   std::uint64_t empty_cells = 0;
   std::uint64_t bytes = 0;  ///< cell offsets + triangle index array + occupancy bits
   double build_s = 0;
@@ -77,7 +78,7 @@ class UniformGrid final : public Accelerator, public CellLayout {
   std::uint64_t bytes() const override { return m_info.bytes; }
   double build_s() const override { return m_info.build_s; }
   /// The report's "grid" section: res, N_c, N, cell_size, build_s, bytes,
-  /// theta_tot, theta_avg, max_multiplicity, empty_fraction, degenerate.
+  /// theta_tot, theta_avg, theta_max, max_multiplicity, empty_fraction, degenerate.
   nlohmann::ordered_json report_section() const override;
   const CellLayout* cells() const override { return this; }
 

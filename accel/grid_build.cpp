@@ -99,11 +99,19 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
   // Pass 1: count the triangles of each cell.
   m_offsets.assign(cells + 1, 0);
   begin_phase(progress, "grid " + m_info.resolution.to_string() + ": counting cells", usable_ids.size());
+  std::atomic<std::uint64_t> max_multiplicity{0};
   for_each_chunk(usable_ids.size(), progress, [&](std::size_t k) {
+    std::uint64_t cells_of_triangle = 0;
     for_each_overlapped_cell(m_info, m_inv_cell, triangles[usable_ids[k]], [&](std::uint64_t c) {
       std::atomic_ref<std::uint32_t>(m_offsets[c]).fetch_add(1, std::memory_order_relaxed);
+      ++cells_of_triangle;
     });
+    // The paper's multiplicity M_j of this triangle; the largest is kept.
+    std::uint64_t seen = max_multiplicity.load(std::memory_order_relaxed);
+    while (cells_of_triangle > seen && !max_multiplicity.compare_exchange_weak(seen, cells_of_triangle)) {
+    }
   });
+  m_info.max_multiplicity = max_multiplicity.load();
   // Exclusive prefix sum into offsets; 64-bit total to detect overflow.
   std::uint64_t total = 0;
   for (std::uint64_t c = 0; c < cells; ++c) {

@@ -32,7 +32,8 @@ nlohmann::ordered_json UniformGrid::report_section() const {
   j["bytes"] = g.bytes;
   j["theta_tot"] = g.theta_tot;
   j["theta_avg"] = double(g.theta_tot) / cells;
-  j["max_multiplicity"] = g.max_occupancy;
+  j["theta_max"] = g.max_occupancy;
+  j["max_multiplicity"] = g.max_multiplicity;
   j["empty_fraction"] = double(g.empty_cells) / cells;
   j["degenerate"] = g.degenerate;
   return j;

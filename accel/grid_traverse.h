@@ -146,6 +146,7 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
     // Empty cells (most of them) do nothing more: no offsets, no counts.
     if ((m_occupied[std::size_t(c) >> 6] >> (std::size_t(c) & 63)) & 1) {
       const std::uint32_t begin = m_offsets[std::size_t(c)], end = m_offsets[std::size_t(c) + 1];
+      ++counts.occupied;
       counts.refs += end - begin;
       for (std::uint32_t k = begin; k < end; ++k) {
         const TriangleId id = m_refs[k];

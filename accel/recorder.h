@@ -32,6 +32,7 @@ enum class GridWalk { closest, any, whole };
 /// at the end.
 struct WalkCounts {
   std::uint64_t cells = 0;  ///< cells visited
+  std::uint64_t occupied = 0;  ///< of them, cells holding triangles (the walk reads their lists)
   std::uint64_t refs = 0;   ///< sum of Theta_i over them (before mailboxing)
   std::uint64_t tests = 0;  ///< triangle tests made
   std::uint64_t skips = 0;  ///< tests the mailbox avoided

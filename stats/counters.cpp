@@ -5,6 +5,7 @@ namespace kappa {
 ClassTotals& ClassTotals::operator+=(const ClassTotals& o) {
   rays += o.rays;
   cells += o.cells;
+  occupied_cells += o.occupied_cells;
   tests += o.tests;
   mailbox_skips += o.mailbox_skips;
   refs += o.refs;

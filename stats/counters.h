@@ -21,6 +21,7 @@ namespace kappa {
 struct ClassTotals {
   std::uint64_t rays = 0;
   std::uint64_t cells = 0;          ///< cells visited, summed over rays
+  std::uint64_t occupied_cells = 0; ///< of them, cells holding triangles
   std::uint64_t tests = 0;          ///< triangle tests performed (after mailboxing)
   std::uint64_t mailbox_skips = 0;  ///< tests avoided by the mailbox
   std::uint64_t refs = 0;           ///< sum of Theta_i over visited cells (before mailboxing)
@@ -89,6 +90,7 @@ class CellCounters {
     void finish(const WalkCounts& w, const WalkSegment& segment) {
       ClassTotals& t = m_owner.totals;
       t.cells += w.cells;
+      t.occupied_cells += w.occupied;
       t.refs += w.refs;
       t.tests += w.tests;
       t.mailbox_skips += w.skips;

@@ -48,13 +48,16 @@ struct RenderCounters {
   RenderCounters() : RenderCounters(0, Vec3d{}, false) {}
 
   std::array<CellCounters, kRenderClasses> classes;
-  /// Sampled traversal time: every 64th query of a class is timed and counts 64 times.
-  std::array<double, kRenderClasses> sampled_seconds{};
+  /// Traversal time of every query of a class, in QueryClock ticks (each
+  /// query capped), and how many queries were capped.
+  std::array<std::uint64_t, kRenderClasses> ticks{};
+  std::array<std::uint64_t, kRenderClasses> capped{};
 
   void merge(const RenderCounters& o) {
     for (std::size_t k = 0; k < kRenderClasses; ++k) {
       classes[k].merge(o.classes[k]);
-      sampled_seconds[k] += o.sampled_seconds[k];
+      ticks[k] += o.ticks[k];
+      capped[k] += o.capped[k];
     }
   }
 };

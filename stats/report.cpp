@@ -43,6 +43,7 @@ nlohmann::ordered_json ray_class_section(const ClassSummary& m, std::optional<do
   j["count"] = t.rays;
   j["cells_per_ray"] = per_ray(double(t.cells));
   j["cells_per_ray_predicted"] = t.rays > 0 ? number_or_null(m.cells_per_ray_predicted) : nullptr;
+  j["occupied_cells_per_ray"] = per_ray(double(t.occupied_cells));
   j["tests_per_ray"] = per_ray(double(t.tests));
   j["refs_per_ray"] = per_ray(double(t.refs));
   j["mailbox_skips_per_ray"] = per_ray(double(t.mailbox_skips));

@@ -105,7 +105,15 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateOptions& o) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->check(finite_number(1e-6, 1e6))
       ->capture_default_str();
-  calibrate.add_option("--n", o.n, "rays per class and grid")->check(CLI::Range(std::size_t(100), std::size_t(1) << 26))->capture_default_str();
+  calibrate.add_option("--spp", o.spp, "samples per pixel of each calibration frame")
+      ->check(CLI::Range(1, 1 << 16))
+      ->capture_default_str();
+  calibrate.add_option("--size", o.size, "calibration frames are SIZE x SIZE pixels")
+      ->check(CLI::Range(8, 4096))
+      ->capture_default_str();
+  calibrate.add_flag("--no-generated", o.no_generated,
+                     "measure only the scenes given, not also the generated soups of 3,000, 30,000 and 300,000 "
+                     "triangles that span the working-set sizes");
   calibrate.add_option("--repeat", o.repeat, "timed passes (median)")->check(CLI::Range(1, 100))->capture_default_str();
   calibrate.add_option("--threads", o.threads,
                        "threads walking at once; times are thread-seconds, as the render report measures them "

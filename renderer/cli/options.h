@@ -66,11 +66,13 @@ struct BenchOptions {
 struct CalibrateOptions {
   std::vector<std::string> scenes;  ///< default: the Cornell box and the low-resolution bunny in assets/
   std::vector<double> densities = {2, 8, 32, 128, 512};
-  std::size_t n = 100000;  ///< rays per class and grid
-  int repeat = 3;
+  int spp = 4;     ///< samples per pixel of each calibration frame
+  int size = 128;  ///< each calibration frame is size x size pixels
+  int repeat = 5;
   int threads = 0;  ///< threads walking at once (0 = all cores, as a render runs)
   AccelOptions build;  ///< grid_max_bytes only: the densities set the resolutions
   std::string out;  ///< default: default_calibration_path()
+  bool no_generated = false;  ///< measure only the scenes given, not the generated soups too
 };
 
 }  // namespace kappa

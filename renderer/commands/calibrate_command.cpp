@@ -2,58 +2,76 @@
 
 #include <unistd.h>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
-#include <atomic>
-#include <chrono>
+#include <array>
+#include <memory>
 #include <cstdio>
 
 #include "accel/factory.h"
 #include "accel/grid.h"
-#include "accel/grid_traverse.h"
 #include "accel/thread_limit.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/output_guard.h"
-#include "renderer/render/ray_sets.h"
+#include "renderer/render/integrator.h"
+#include "renderer/scene/generated_scene.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/util/error.h"
 #include "stats/calibration.h"
-#include "stats/cast.h"
-#include "stats/synthetic_rays.h"
+#include "stats/query_clock.h"
 
 namespace kappa {
 namespace {
 
-/// Median thread-seconds per ray of walking every ray once with `threads`
-/// threads at once, nothing recorded: the render report's measured time is
-/// thread-seconds of walks running on every core, which share caches and
-/// memory bandwidth, so the constants are measured the same way.
-double seconds_per_ray(const UniformGrid& grid, const std::vector<Ray>& rays, GridWalk walk, int repeat, int threads) {
-  std::vector<double> times;
-  std::atomic<std::uint64_t> sink{0};
-  for (int r = 0; r <= repeat; ++r) {  // pass 0 warms the caches and is not kept
-    const auto start = std::chrono::steady_clock::now();
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024), [&](const auto& range) {
-      NoRecorder none;
-      std::uint64_t hits = 0;
-      for (std::size_t i = range.begin(); i < range.end(); ++i) {
-        switch (walk) {
-          case GridWalk::closest: hits += grid.closest_hit(rays[i], none).has_value(); break;
-          case GridWalk::any: hits += grid.any_hit(rays[i], none); break;
-          case GridWalk::whole: hits += grid.walk_whole(rays[i], none).has_value(); break;
-        }
-      }
-      sink.fetch_add(hits, std::memory_order_relaxed);  // keeps the walks from being optimized away
-    });
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    // Thread-seconds: every thread busy, unless there are fewer chunks of rays than threads.
-    const std::size_t busy = std::min<std::size_t>(std::size_t(threads), (rays.size() + 1023) / 1024);
-    if (r > 0) times.push_back(s * double(std::max<std::size_t>(busy, 1)) / double(std::max<std::size_t>(rays.size(), 1)));
+/// Soups of these sizes join the measured scenes unless --no-generated: with
+/// the grid's densities they take the working set from about 0.1 MiB to past
+/// the 32 MiB L3 of the project's machines.
+constexpr std::size_t kGeneratedSizes[] = {3000, 30000, 300000};
+constexpr double kGeneratedDensities[] = {8, 32};
+/// A class with fewer rays in a calibration frame is not a measurement.
+constexpr std::uint64_t kMinRays = 1000;
+
+QueryKind kind_of(std::size_t render_class) {
+  return render_class == kCamera ? QueryKind::camera : render_class == kShadow ? QueryKind::any : QueryKind::closest;
+}
+
+/// One calibration frame: a scene at one density, its grid, and what each
+/// pass over it measured.
+struct Frame {
+  const Scene* scene = nullptr;
+  std::unique_ptr<UniformGrid> grid;
+  double working_set_bytes = 0;
+  std::array<ClassTotals, kRenderClasses> totals{};  ///< the same every pass: frames are deterministic
+  std::array<std::vector<double>, kRenderClasses> seconds;
+};
+
+/// Renders the frame with statistics on: exactly the queries, in the order
+/// and among the shading work, that a render's report times.
+void render_pass(Frame& frame, const RenderSettings& settings) {
+  Film film(frame.scene->width, frame.scene->height, AovSelection{});
+  const RenderResult result = render(*frame.scene, *frame.grid, settings, film);
+  for (std::size_t k = 0; k < kRenderClasses; ++k) {
+    frame.totals[k] = result.counters->classes[k].totals;
+    frame.seconds[k].push_back(QueryClock::get().seconds(result.counters->ticks[k]));
   }
-  std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
+}
+
+/// One measurement per ray class with enough rays: its counts, and the
+/// median of its traversal thread-seconds over the passes.
+std::vector<TimedLoad> measurements_of(Frame& frame) {
+  std::vector<TimedLoad> out;
+  for (std::size_t k = 0; k < kRenderClasses; ++k) {
+    const ClassTotals& t = frame.totals[k];
+    if (t.rays < kMinRays) continue;  // too few to time: a frame's classes are not all populated
+    std::vector<double>& s = frame.seconds[k];
+    std::sort(s.begin(), s.end());
+    TimedLoad m;
+    m.load = QueryLoad{kind_of(k),          double(t.rays),          double(t.cells),         double(t.occupied_cells),
+                       double(t.tests),     double(t.mailbox_skips), double(t.hits),          frame.working_set_bytes};
+    m.seconds = s[s.size() / 2];
+    m.label = frame.scene->name + " " + frame.grid->info().resolution.to_string() + " " + kRenderClassNames[k];
+    out.push_back(std::move(m));
+  }
+  return out;
 }
 
 std::string machine_name() {
@@ -72,52 +90,74 @@ int run_calibrate(const CalibrateOptions& options) {
     files = {(assets / "cornell-box" / "scene.json").string(), (assets / "bunny-lowres" / "scene_lowres.json").string()};
   }
   // Every scene first: the calibration file must not replace one of their files.
-  std::vector<Scene> scenes;
+  struct Measured {
+    Scene scene;
+    std::vector<double> densities;
+  };
+  std::vector<Measured> scenes;
   std::vector<std::filesystem::path> inputs;
   for (const auto& file : files) {
     Warnings warnings;
-    scenes.push_back(load_scene(file, warnings));
-    inputs.insert(inputs.end(), scenes.back().inputs.begin(), scenes.back().inputs.end());
+    scenes.push_back({load_scene(file, warnings), options.densities});
+    inputs.insert(inputs.end(), scenes.back().scene.inputs.begin(), scenes.back().scene.inputs.end());
   }
+  if (!options.no_generated)
+    for (std::size_t n : kGeneratedSizes)
+      scenes.push_back({generated_soup_scene(n, 1), std::vector<double>(std::begin(kGeneratedDensities), std::end(kGeneratedDensities))});
   refuse_outputs_over_inputs({out_path}, inputs);
   AtomicOutput out(out_path);
 
   const ThreadLimit thread_limit(options.threads);
   const int threads = active_threads();
-  std::vector<CostSample> samples;
-  for (const Scene& scene : scenes) {
-    for (double density : options.densities) {
+  std::vector<Frame> frames;
+  for (Measured& s : scenes) {
+    // The calibration's film, re-framed for its aspect as a render does.
+    Scene& scene = s.scene;
+    scene.width = scene.height = options.size;
+    if (scene.camera_framed) scene.camera = framing_camera(scene.bounds(), scene.camera.vfov_deg, 1.0f);
+    for (double density : s.densities) {
       AccelOptions build = options.build;
       build.grid_density = density;
-      const UniformGrid grid(scene.triangles, grid_options(build));
-      for (RayClass cls : {RayClass::camera, RayClass::bounce, RayClass::shadow, RayClass::lines}) {
-        std::vector<Ray> rays;
-        GridWalk walk = GridWalk::closest;
-        if (cls == RayClass::lines) {
-          rays = uniform_lines(grid.info().lo, grid.info().hi, options.n, 1);
-        } else {
-          const RaySet set = make_ray_set(cls, scene, grid, options.n, 1);
-          rays = set.rays;
-          if (set.occlusion) walk = GridWalk::any;
-        }
-        if (rays.empty()) continue;
-        const CastMeasurement m = cast_with_counters(grid, rays, walk);
-        CostSample s;
-        s.seconds_per_ray = seconds_per_ray(grid, rays, walk, options.repeat, threads);
-        s.cells_per_ray = double(m.counters.totals.cells) / double(rays.size());
-        s.refs_per_ray = double(m.counters.totals.refs) / double(rays.size());
-        s.label = scene.name + " " + grid.info().resolution.to_string() + " " + ray_class_name(cls);
-        std::printf("  %-40s %8.1f ns/ray %8.2f cells %8.2f refs\n", s.label.c_str(), s.seconds_per_ray * 1e9,
-                    s.cells_per_ray, s.refs_per_ray);
-        samples.push_back(s);
-      }
+      Frame f;
+      f.scene = &scene;
+      f.grid = std::make_unique<UniformGrid>(scene.triangles, grid_options(build));
+      f.working_set_bytes = double(f.grid->bytes()) + double(scene.triangles.size() * sizeof(Triangle));
+      frames.push_back(std::move(f));
     }
   }
-  Calibration cal = fit_calibration(samples);
+  // The passes take turns over the frames, so that the machine's drift in
+  // speed (up to 1.5x within a minute on shared machines) spreads over every
+  // frame instead of falling on a few; the first pass warms up.
+  RenderSettings settings;  // the render's defaults, but for the samples
+  settings.spp = options.spp;
+  settings.stats = true;
+  settings.stats_max_bytes = options.build.max_bytes();
+  for (int pass = 0; pass <= options.repeat; ++pass)
+    for (Frame& f : frames) {
+      render_pass(f, settings);
+      if (pass == 0) std::fill(f.seconds.begin(), f.seconds.end(), std::vector<double>{});
+    }
+  std::vector<TimedLoad> measurements;
+  for (Frame& f : frames)
+    for (TimedLoad& m : measurements_of(f)) {
+      const double r = m.load.rays;
+      std::printf("  %-36s %9.0f rays %8.1f ns/ray %8.2f cells %8.2f tests %6.2f skips %6.1f MiB\n", m.label.c_str(), r,
+                  m.seconds / r * 1e9, m.load.cells / r, m.load.tests / r, m.load.skips / r,
+                  m.load.working_set_bytes / double(1 << 20));
+      measurements.push_back(std::move(m));
+    }
+  Calibration cal = fit_calibration(measurements);
   cal.machine = machine_name() + ", " + std::to_string(threads) + " walking";
-  std::printf("T0 %.2f ns, Ts %.2f ns, Th %.2f ns (%zu measurements, rms relative error %.1f %%) -> %s\n", cal.T0_ns,
-              cal.Ts_ns, cal.Th_ns, cal.samples, 100 * cal.rms_relative_error, out_path.c_str());
-  write_and_commit(out, to_json(cal, samples).dump(2) + "\n");
+  cal.clock = QueryClock::get().source();
+  std::printf("eq 10: T0 %.2f ns, Ts %.2f ns, Th %.2f ns (rms relative error %.1f %%)\n", cal.eq10.ns[0], cal.eq10.ns[1],
+              cal.eq10.ns[2], 100 * cal.eq10.rms_relative_error);
+  std::printf("extended:");
+  for (std::size_t i = 0; i < cal.extended.terms.size(); ++i)
+    std::printf(" %s %.2f ns%s", cal.extended.terms[i].c_str(), cal.extended.ns[i],
+                i + 1 < cal.extended.terms.size() ? "," : "");
+  std::printf(" (rms relative error %.1f %%)\n%zu measurements -> %s\n", 100 * cal.extended.rms_relative_error,
+              cal.samples, out_path.c_str());
+  write_and_commit(out, to_json(cal, measurements).dump(2) + "\n");
   return 0;
 }
 

@@ -16,6 +16,7 @@
 #include "accel/hash.h"
 #include "renderer/render/sampling.h"
 #include "stats/cost_model.h"
+#include "stats/query_clock.h"
 #include "stats/render_counters.h"
 
 namespace kappa {
@@ -43,43 +44,24 @@ struct PlainQueries {
   }
 };
 
-/// Class times without a clock read per query: every 64th query of a class
-/// (by its index in the class, the class's ray count before it) is timed and
-/// counts 64 times. The clock's own cost, measured once, is
-/// taken off each timed query (it would otherwise be counted 64 times).
-class SampledClock {
+/// Times every query of a class with the QueryClock (the TSC where it is
+/// constant), less the clock's own cost, capped per query.
+class QueryTimer {
  public:
-  explicit SampledClock(RenderCounters& counters) : m_counters(counters) {}
+  explicit QueryTimer(RenderCounters& counters) : m_counters(counters) {}
 
   template <typename F>
-  void timed(RenderClass k, std::uint64_t index, F&& query) {
-    if ((index & 63) != 0) {
-      query();
-      return;
-    }
-    const auto start = std::chrono::steady_clock::now();
+  void timed(RenderClass k, F&& query) {
+    const std::uint64_t start = m_clock.now();
     query();
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    m_counters.sampled_seconds[k] += 64.0 * std::max(0.0, s - m_clock_overhead_s);
+    bool capped = false;
+    m_counters.ticks[k] += m_clock.elapsed(start, m_clock.now(), capped);
+    m_counters.capped[k] += capped;
   }
 
  private:
-  /// Median of many back-to-back clock reads: what timing an empty query costs.
-  static double clock_overhead_seconds() {
-    static const double overhead = [] {
-      std::array<double, 1001> d;
-      for (double& x : d) {
-        const auto a = std::chrono::steady_clock::now();
-        x = std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
-      }
-      std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-      return d[d.size() / 2];
-    }();
-    return overhead;
-  }
-
   RenderCounters& m_counters;
-  double m_clock_overhead_s = clock_overhead_seconds();
+  const QueryClock& m_clock = QueryClock::get();
 };
 
 /// Statistics on with an accelerator other than the grid: per class what
@@ -106,14 +88,15 @@ class ClassQueries {
     ++rays;
     ClassTotals& t = m_counters.classes[k].totals;
     Result result{};
-    m_clock.timed(k, t.rays++, [&] { result = query(); });
+    ++t.rays;
+    m_clock.timed(k, [&] { result = query(); });
     t.hits += bool(result);
     return result;
   }
 
   const Accelerator& m_accel;
   RenderCounters& m_counters;
-  SampledClock m_clock{m_counters};
+  QueryTimer m_clock{m_counters};
 };
 
 /// Which paths count per cell: every path, or 1 in `every` drawn by a hash
@@ -175,7 +158,8 @@ class CountingQueries {
     ++rays;
     CellCounters& c = m_counters.classes[k];
     Result result{};
-    m_clock.timed(k, c.totals.rays++, [&] {
+    ++c.totals.rays;
+    m_clock.timed(k, [&] {
       if (m_path_per_cell) {
         result = walk_per_cell<Result>(c, walk);
       } else {
@@ -197,7 +181,7 @@ class CountingQueries {
 
   const Walker& m_walker;
   RenderCounters& m_counters;
-  SampledClock m_clock{m_counters};
+  QueryTimer m_clock{m_counters};
   CellSampling m_sampling;
   bool m_per_cell;
   bool m_path_per_cell = false;

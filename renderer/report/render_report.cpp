@@ -1,8 +1,10 @@
 #include "renderer/report/render_report.h"
 
 #include "accel/cell_layout.h"
+#include "renderer/report/cost_section.h"
 #include "renderer/report/report_sections.h"
 #include "stats/cast.h"
+#include "stats/query_clock.h"
 #include "stats/report.h"
 
 namespace kappa {
@@ -43,6 +45,7 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
   if (nlohmann::ordered_json section = accel_section(accel, scene.triangles); !section.is_null())
     j[std::string(accel.name())] = std::move(section);
   const CellLayout* cells = accel.cells();
+  const QueryClock& clock = QueryClock::get();
   nlohmann::ordered_json rays = nlohmann::ordered_json::object();
   if (cells && result.counters) {
     const RenderCounters& rc = *result.counters;
@@ -59,11 +62,11 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
         for (std::size_t i = 0; i < visits.size(); ++i) all_visits[i] += visits[i];
       }
       rays[kRenderClassNames[k]] = ray_class_section(
-          summary(c.totals, c.per_cell_queries(), visits, theta, rc.sampled_seconds[k]),
+          summary(c.totals, c.per_cell_queries(), visits, theta, clock.seconds(rc.ticks[k])),
           std::nullopt);
       all += c.totals;
       all_per_cell_rays += c.per_cell_queries();
-      all_seconds += rc.sampled_seconds[k];
+      all_seconds += clock.seconds(rc.ticks[k]);
     }
     rays["all"] = ray_class_section(summary(all, all_per_cell_rays, all_visits, theta, all_seconds),
                                     std::nullopt);
@@ -77,34 +80,15 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
       return any_accel_class_section(t.rays, t.hits, seconds);
     };
     for (std::size_t k = 0; k < kRenderClasses; ++k) {
-      rays[kRenderClassNames[k]] = section(rc.classes[k].totals, rc.sampled_seconds[k]);
+      rays[kRenderClassNames[k]] = section(rc.classes[k].totals, clock.seconds(rc.ticks[k]));
       all += rc.classes[k].totals;
-      all_seconds += rc.sampled_seconds[k];
+      all_seconds += clock.seconds(rc.ticks[k]);
     }
     rays["all"] = section(all, all_seconds);
     add_stats_block(j, false, std::nullopt, "");
   }
   j["rays"] = rays;
-  j["cost"] = nullptr;  // without a calibration (kappa calibrate) there is no prediction
-  // The calibrated constants are the uniform grid's (kappa calibrate times its walk).
-  if (calibration && accel.kind() == AccelKind::grid && result.counters) {
-    // Thread-seconds of traversal: eq 10 per class from its own counts, and
-    // the sampled clock of the same queries (which includes the counting).
-    double predicted = 0, measured = 0;
-    for (std::size_t k = 0; k < kRenderClasses; ++k) {
-      const ClassTotals& t = result.counters->classes[k].totals;
-      if (t.rays == 0) continue;
-      predicted += double(t.rays) * calibration->seconds_per_ray(double(t.cells) / double(t.rays),
-                                                                 double(t.refs) / double(t.rays));
-      measured += result.counters->sampled_seconds[k];
-    }
-    j["cost"] = {{"T0_ns", calibration->T0_ns},
-                 {"Ts_ns", calibration->Ts_ns},
-                 {"Th_ns", calibration->Th_ns},
-                 {"predicted_s", predicted},
-                 {"measured_s", measured},
-                 {"relative_error", measured > 0 ? nlohmann::ordered_json(predicted / measured - 1.0) : nlohmann::ordered_json()}};
-  }
+  j["cost"] = cost_section(accel, scene.triangles.size(), result, calibration);
   return j;
 }
 

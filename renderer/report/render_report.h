@@ -16,8 +16,8 @@ struct FrameFacts {
   std::uint64_t seed = 0;
 };
 
-/// The report; `cost` is filled when a calibration is given and counters ran:
-/// eq 10's predicted traversal time (thread-seconds) beside the measured one.
+/// The report; `cost` (cost_section.h) when counters ran: the measured
+/// traversal time (thread-seconds) beside eq 10's and the extended model's.
 nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& accel, const FrameFacts& frame,
                                      const RenderResult& result, const std::optional<Calibration>& calibration = {},
                                      const nlohmann::ordered_json& settings = nullptr);

@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -136,6 +139,27 @@ TEST(GridInsert, WorkGrowsWithTheCellsTouchedNotWithTheBoundingBox) {
   EXPECT_GT(touched, 64u * 64);  // a sheet at least one cell thick over 64 x 64
   EXPECT_LT(touched, 64u * 64 * 64 / 10);
   EXPECT_LE(tests, 2 * touched) << touched << " cells touched";
+}
+
+TEST(GridInsert, MaxMultiplicityIsTheMostCellsOfOneTriangleAndThetaMaxTheFullestCell) {
+  // The paper's multiplicity M_j counts the cells triangle j is in; the
+  // fullest cell is another quantity (it was reported under this name).
+  const std::vector<Triangle> tris = hostile_triangles();
+  const UniformGrid grid = unit_cell_grid(tris, GridResolution{13, 5, 7}, {8, 8, 8});
+  const GridInfo& g = grid.info();
+  std::uint64_t most = 0;
+  std::vector<std::uint32_t> theta(g.resolution.cells(), 0);
+  for (const Triangle& t : tris) {
+    const std::vector<std::uint64_t> cells = brute_force_cells(g, t);
+    most = std::max<std::uint64_t>(most, cells.size());
+    for (std::uint64_t c : cells) ++theta[c];
+  }
+  EXPECT_EQ(g.max_multiplicity, most);
+  EXPECT_EQ(g.max_occupancy, *std::max_element(theta.begin(), theta.end()));
+  EXPECT_NE(g.max_multiplicity, std::uint64_t(g.max_occupancy));  // the two differ here
+  const auto section = grid.report_section();
+  EXPECT_EQ(section.at("max_multiplicity").get<std::uint64_t>(), most);
+  EXPECT_EQ(section.at("theta_max").get<std::uint64_t>(), g.max_occupancy);
 }
 
 }  // namespace

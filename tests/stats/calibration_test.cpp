@@ -12,83 +12,149 @@
 namespace kappa {
 namespace {
 
+/// A measurement made up from known eq 10 constants (ns): T0 + cells Ts + tests Th.
+TimedLoad eq10_load(double T0, double Ts, double Th, double cells, double tests, double rays = 1000) {
+  TimedLoad m;
+  m.load.rays = rays;
+  m.load.cells = cells * rays;
+  m.load.tests = tests * rays;
+  m.seconds = (T0 + Ts * cells + Th * tests) * 1e-9 * rays;
+  return m;
+}
+
 TEST(Calibration, FitRecoversExactConstants) {
-  // seconds = T0 + cells Ts + refs Th with T0 = 30 ns, Ts = 5 ns, Th = 8 ns.
-  std::vector<CostSample> samples;
+  // seconds = T0 + cells Ts + tests Th with T0 = 30 ns, Ts = 5 ns, Th = 8 ns.
+  std::vector<TimedLoad> samples;
   for (double cells : {2.0, 10.0, 40.0})
-    for (double refs : {1.0, 7.0, 90.0}) samples.push_back({(30 + 5 * cells + 8 * refs) * 1e-9, cells, refs, ""});
-  const Calibration c = fit_calibration(samples);
-  EXPECT_NEAR(c.T0_ns, 30.0, 1e-6);
-  EXPECT_NEAR(c.Ts_ns, 5.0, 1e-6);
-  EXPECT_NEAR(c.Th_ns, 8.0, 1e-6);
-  EXPECT_NEAR(c.rms_relative_error, 0.0, 1e-9);
-  EXPECT_NEAR(c.seconds_per_ray(3, 4), (30 + 15 + 32) * 1e-9, 1e-15);
+    for (double tests : {1.0, 7.0, 90.0}) samples.push_back(eq10_load(30, 5, 8, cells, tests));
+  TimeModel m = eq10_model();
+  fit(m, samples);
+  EXPECT_NEAR(m.ns[0], 30.0, 1e-6);
+  EXPECT_NEAR(m.ns[1], 5.0, 1e-6);
+  EXPECT_NEAR(m.ns[2], 8.0, 1e-6);
+  EXPECT_NEAR(m.rms_relative_error, 0.0, 1e-9);
+  EXPECT_NEAR(m.seconds(eq10_load(0, 0, 0, 3, 4, 10).load), 10 * (30 + 15 + 32) * 1e-9, 1e-15);
+}
+
+TEST(Calibration, TheExtendedModelRecoversEveryTermOfAClosedFormCase) {
+  // Times made from known values of all ten terms, over loads that vary each
+  // feature apart: the fit returns each term, and the prediction of a load
+  // it never saw is exact.
+  const double cache = 1 << 20;
+  TimeModel truth = extended_model(cache);
+  truth.ns = {40, 90, 60, 1.5, 25, 2, 7, 3, 9, 20};
+  std::vector<TimedLoad> samples;
+  int i = 0;
+  for (QueryKind kind : {QueryKind::camera, QueryKind::closest, QueryKind::any})
+    for (double cells : {3.0, 30.0})
+      for (double occupied_share : {0.1, 0.6})
+        for (double tests : {2.0, 50.0})
+          for (double working_set : {0.5 * cache, 16 * cache, 300 * cache}) {
+            TimedLoad m;
+            m.load = QueryLoad{kind, 1000, 1000 * cells, 1000 * cells * occupied_share, 1000 * tests,
+                               1000 * (1 + (i % 5)), 1000 * (i % 3) / 2.0, working_set};
+            m.seconds = truth.seconds(m.load);
+            samples.push_back(m);
+            ++i;
+          }
+  TimeModel m = extended_model(cache);
+  fit(m, samples);
+  for (std::size_t k = 0; k < m.ns.size(); ++k) EXPECT_NEAR(m.ns[k], truth.ns[k], 1e-6) << m.terms[k];
+  const QueryLoad unseen{QueryKind::closest, 500, 500 * 12.0, 500 * 2.0, 500 * 9.0, 500 * 2.0, 400, 40 * cache};
+  EXPECT_NEAR(m.seconds(unseen) / truth.seconds(unseen), 1.0, 1e-9);
 }
 
 TEST(Calibration, NoConstantComesOutNegative) {
   // Times that the free fit explains with T0 = -20 ns: the fit holds T0 at 0
   // and is then the best non-negative one, which for T0 = 0 is the least
-  // squares fit of (cells, refs) alone; checked against that fit computed
+  // squares fit of (cells, tests) alone; checked against that fit computed
   // here in closed form.
-  std::vector<CostSample> samples;
+  std::vector<TimedLoad> samples;
   for (double cells : {10.0, 40.0, 80.0})
-    for (double refs : {5.0, 20.0, 60.0}) samples.push_back({(-20 + 5 * cells + 8 * refs) * 1e-9, cells, refs, ""});
-  const Calibration c = fit_calibration(samples);
-  EXPECT_EQ(c.T0_ns, 0.0);
-  EXPECT_GT(c.Ts_ns, 0.0);
-  EXPECT_GT(c.Th_ns, 0.0);
-  // Weighted normal equations of the two-term fit (weights 1/b^2).
+    for (double tests : {5.0, 20.0, 60.0}) samples.push_back(eq10_load(-20, 5, 8, cells, tests));
+  TimeModel m = eq10_model();
+  fit(m, samples);
+  EXPECT_EQ(m.ns[0], 0.0);
+  EXPECT_GT(m.ns[1], 0.0);
+  EXPECT_GT(m.ns[2], 0.0);
+  // Normal equations of the two-term fit of the relative error.
   double a11 = 0, a12 = 0, a22 = 0, b1 = 0, b2 = 0;
-  for (const CostSample& s : samples) {
-    const double w = 1.0 / (s.seconds_per_ray * s.seconds_per_ray);
-    a11 += w * s.cells_per_ray * s.cells_per_ray;
-    a12 += w * s.cells_per_ray * s.refs_per_ray;
-    a22 += w * s.refs_per_ray * s.refs_per_ray;
-    b1 += w * s.cells_per_ray * s.seconds_per_ray;
-    b2 += w * s.refs_per_ray * s.seconds_per_ray;
+  for (const TimedLoad& s : samples) {
+    const double t = s.seconds / s.load.rays * 1e9;
+    const double c = s.load.cells / s.load.rays / t, h = s.load.tests / s.load.rays / t;
+    a11 += c * c, a12 += c * h, a22 += h * h, b1 += c, b2 += h;
   }
   const double det = a11 * a22 - a12 * a12;
-  EXPECT_NEAR(c.Ts_ns, (b1 * a22 - b2 * a12) / det * 1e9, 1e-6);
-  EXPECT_NEAR(c.Th_ns, (a11 * b2 - a12 * b1) / det * 1e9, 1e-6);
+  EXPECT_NEAR(m.ns[1], (b1 * a22 - b2 * a12) / det, 1e-6);
+  EXPECT_NEAR(m.ns[2], (a11 * b2 - a12 * b1) / det, 1e-6);
 }
 
 TEST(Calibration, TooFewOrDegenerateMeasurementsAreRefused) {
-  std::vector<CostSample> two = {{1e-7, 1, 1, ""}, {2e-7, 2, 2, ""}};
-  EXPECT_THROW(fit_calibration(two), std::runtime_error);
-  std::vector<CostSample> collinear = {{1e-7, 1, 1, ""}, {2e-7, 2, 2, ""}, {3e-7, 3, 3, ""}};
-  EXPECT_THROW(fit_calibration(collinear), std::runtime_error);
+  TimeModel m = eq10_model();
+  const std::vector<TimedLoad> two = {eq10_load(10, 1, 1, 1, 1), eq10_load(10, 1, 1, 2, 2)};
+  EXPECT_THROW(fit(m, two), std::runtime_error);
+  // Tests always equal to cells: Ts and Th cannot be told apart.
+  const std::vector<TimedLoad> collinear = {eq10_load(10, 1, 1, 1, 1), eq10_load(10, 1, 1, 2, 2),
+                                            eq10_load(10, 1, 1, 3, 3)};
+  EXPECT_THROW(fit(m, collinear), std::runtime_error);
 }
 
 TEST(Calibration, FileRoundTripAndErrors) {
   test::TempDir tmp;
   EXPECT_FALSE(load_calibration(tmp / "none.json"));
   Calibration c;
-  c.T0_ns = 1.5, c.Ts_ns = 2.5, c.Th_ns = 3.5, c.samples = 9;
+  c.eq10.ns = {1.5, 2.5, 3.5};
+  for (std::size_t k = 0; k < c.extended.ns.size(); ++k) c.extended.ns[k] = 0.5 + double(k);
+  c.samples = 9;
   test::write_file(tmp / "c.json", to_json(c).dump());
   const auto back = load_calibration(tmp / "c.json");
   ASSERT_TRUE(back);
-  EXPECT_EQ(back->Ts_ns, 2.5);
-  test::write_file(tmp / "bad.json", "{\"T0_ns\": \"fast\"}");
+  EXPECT_EQ(back->eq10.ns, c.eq10.ns);
+  EXPECT_EQ(back->extended.ns, c.extended.ns);
+  EXPECT_EQ(back->extended.cache_bytes, c.extended.cache_bytes);
+  test::write_file(tmp / "bad.json", "{\"format\": 2, \"eq10\": {\"constants\": {\"T0_ns\": \"fast\"}}}");
   EXPECT_THROW(load_calibration(tmp / "bad.json"), InputError);
+  // A file of the first format (eq 10 alone, Th per reference): refused with
+  // a word to calibrate again, not read as something it is not.
+  test::write_file(tmp / "old.json", R"({"T0_ns": 20, "Ts_ns": 3, "Th_ns": 7})");
+  try {
+    load_calibration(tmp / "old.json");
+    ADD_FAILURE() << "an old calibration was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("run kappa calibrate again"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Calibration, CalibrateThenRenderReportsTheCost) {
   test::TempDir tmp;
   const auto cal = (tmp / "cal.json").string();
-  const auto c = test::run_kappa({"calibrate", "--n", "2000", "--repeat", "1", "--density", "2,16", "--out", cal});
+  const auto c = test::run_kappa(
+      {"calibrate", "--spp", "2", "--size", "32", "--repeat", "1", "--density", "2,16", "--out", cal});
   ASSERT_EQ(c.exit_code, 0) << c.std_err;
   const auto calibration = nlohmann::json::parse(test::read_file(cal));
-  EXPECT_EQ(calibration.at("samples"), 16);  // 2 scenes x 2 densities x 4 ray classes
+  EXPECT_EQ(calibration.at("format"), kCalibrationFormat);
+  // Frames of the two asset scenes at 2 densities and the three soups at
+  // theirs, one measurement per ray class with at least 1000 rays.
+  const auto& measurements = calibration.at("measurements");
+  EXPECT_EQ(calibration.at("samples"), measurements.size());
+  EXPECT_GE(measurements.size(), 20u);
+  for (const char* scene : {"cornell-box", "scene_lowres", "soup3000", "soup30000", "soup300000"}) {
+    bool found = false;
+    for (const auto& m : measurements) found = found || m.at("label").get<std::string>().rfind(scene, 0) == 0;
+    EXPECT_TRUE(found) << scene;
+  }
   const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
   const auto r = test::run_kappa({"render", scene, "--spp", "2", "--width", "32", "--height", "32", "--out",
                                   (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(), "--calibration", cal});
   ASSERT_EQ(r.exit_code, 0) << r.std_err;
   const auto report = nlohmann::json::parse(test::read_file(tmp / "x.json"));
   const auto& cost = report.at("cost");
-  for (const char* key : {"T0_ns", "Ts_ns", "Th_ns", "predicted_s", "measured_s", "relative_error"})
-    EXPECT_TRUE(cost.at(key).is_number()) << key;
-  EXPECT_GT(cost.at("predicted_s").get<double>(), 0.0);
   EXPECT_GT(cost.at("measured_s").get<double>(), 0.0);
+  for (const char* model : {"eq10", "extended"}) {
+    EXPECT_GT(cost.at(model).at("predicted_s").get<double>(), 0.0) << model;
+    EXPECT_TRUE(cost.at(model).at("relative_error").is_number()) << model;
+  }
+  EXPECT_NE(r.std_err.find("s predicted"), std::string::npos) << r.std_err;
   // A named calibration that does not exist is an error, not a silent null.
   const auto missing = test::run_kappa({"render", scene, "--spp", "1", "--out", (tmp / "y.exr").string(),
                                         "--calibration", (tmp / "nope.json").string()});
@@ -103,13 +169,14 @@ namespace kappa {
 namespace {
 
 TEST(Calibration, NonPositiveTimesAreRefused) {
-  std::vector<CostSample> samples = {{1e-7, 1, 1, "a"}, {0.0, 2, 5, "b"}, {3e-7, 3, 2, "c"}};
+  std::vector<TimedLoad> samples = {eq10_load(10, 1, 1, 1, 1), eq10_load(10, 1, 1, 2, 5), eq10_load(10, 1, 1, 3, 2)};
+  samples[1].seconds = 0;
   EXPECT_THROW(fit_calibration(samples), std::runtime_error);
 }
 
 TEST(Calibration, ABadCalibrationFileIsRefusedBeforeRendering) {
   test::TempDir tmp;
-  test::write_file(tmp / "bad.json", "{\"T0_ns\": null}");
+  test::write_file(tmp / "bad.json", "{\"format\": 2, \"eq10\": null}");
   const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
   const auto r = test::run_kappa({"render", scene, "--spp", "1000", "--out", (tmp / "x.exr").string(), "--calibration",
                                   (tmp / "bad.json").string()});

@@ -237,7 +237,7 @@ std::vector<std::string> building_command(const std::string& command, const fs::
     args.insert(args.end(), {good_scene(), "--n", "100", "--repeat", "1", "--threads", "1", "--accel", "grid",
                              "--json", (tmp / "x.json").string()});
   if (command == "calibrate")
-    args.insert(args.end(), {(assets_dir() / "cornell-box" / "scene.json").string(), "--n", "200", "--repeat", "1",
+    args.insert(args.end(), {(assets_dir() / "cornell-box" / "scene.json").string(), "--size", "32", "--spp", "2", "--repeat", "1",
                              "--density", "2,32", "--out", (tmp / "x.json").string()});
   args.insert(args.end(), flags.begin(), flags.end());
   return args;
@@ -280,7 +280,7 @@ TEST(GridFlags, CalibrateBuildsWithinGridMaxBytesWhenItFits) {
 // the calibration's measurements cannot determine T0, Ts and Th.
 TEST(InternalError, ACalibrationFitItsMeasurementsDoNotDetermineExitsOne) {
   TempDir tmp;
-  const RunResult r = run_kappa({"calibrate", good_scene(), "--n", "100", "--repeat", "1", "--density", "2", "--out",
+  const RunResult r = run_kappa({"calibrate", good_scene(), "--no-generated", "--size", "32", "--repeat", "1", "--density", "2", "--out",
                                  (tmp / "cal.json").string()},
                                 tmp.path());
   EXPECT_EQ(r.exit_code, 1) << r.std_err;
@@ -294,7 +294,7 @@ TEST(NumberFlags, OtherCommandsRefuseNaNAndKeepTheLargestSeed) {
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"cast", scene, "--rays", "segments", "--n", "10", "--length", "nan"},
         {"bench", scene, "--n", "10", "--accel", "grid", "--threads", "1", "--repeat", "1", "--naive-budget", "nan"},
-        {"calibrate", scene, "--n", "100", "--density", "inf"},
+        {"calibrate", scene, "--size", "32", "--density", "inf"},
         {"cast", scene, "--n", "10", "--seed", "-1"}}) {
     SCOPED_TRACE(::testing::PrintToString(args));
     TempDir tmp;

@@ -2,6 +2,8 @@
 // documented keys with numbers or null, never NaN.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "test_util.h"
@@ -29,7 +31,7 @@ TEST(Cast, EveryDistributionReportsTheDocumentedKeys) {
     for (const char* key : {"schema_version", "kappa_version", "scene", "accel", "render", "grid", "rays", "cost"})
       EXPECT_TRUE(j.contains(key)) << key;
     for (const char* key : {"res", "N_c", "N", "cell_size", "build_s", "bytes", "theta_tot", "theta_tot_eq19",
-                            "theta_tot_eq21", "theta_avg", "max_multiplicity", "empty_fraction"})
+                            "theta_tot_eq21", "theta_avg", "theta_max", "max_multiplicity", "empty_fraction"})
       EXPECT_TRUE(j.at("grid").contains(key)) << key;
     const auto& c = j.at("rays").at(rays);
     for (const char* key : {"count", "cells_per_ray", "cells_per_ray_predicted", "tests_per_ray", "refs_per_ray",
@@ -107,7 +109,11 @@ TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
   test::TempDir tmp;
   // A calibration of known constants, so that the cost section does not
   // depend on a file another run may have left beside the binary.
-  test::write_file(tmp / "cal.json", R"({"T0_ns": 20, "Ts_ns": 3, "Th_ns": 7})");
+  test::write_file(tmp / "cal.json", R"({"format": 2, "machine": "test", "clock": "tsc", "samples": 0,
+    "eq10": {"constants": {"T0_ns": 20, "Ts_ns": 3, "Th_ns": 7}},
+    "extended": {"cache_bytes": 1024, "constants": {"T0_camera_ns": 11, "T0_closest_ns": 13, "T0_any_ns": 17,
+      "Ts_empty_ns": 1, "Ts_occupied_ns": 19, "Ts_memory_ns": 2, "Th_ns": 7, "Th_memory_ns": 3, "T_skip_ns": 5,
+      "T_hit_ns": 23}}})");
   const auto r = test::run_kappa({"render", cornell(), "--spp", "2", "--width", "24", "--height", "24", "--out",
                                   (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(), "--calibration",
                                   (tmp / "cal.json").string()});
@@ -117,18 +123,61 @@ TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
   EXPECT_EQ(j.at("accel"), "grid");
   for (const char* cls : {"camera", "shadow", "bounce1", "bounce2", "bounce3+", "all"})
     EXPECT_TRUE(j.at("rays").at(cls).at("kappa").is_number()) << cls;
-  // eq 10 per class from the class's own counts, summed.
+  // Both models per class from the class's own counts, summed.
   const auto& cost = j.at("cost");
   ASSERT_TRUE(cost.is_object());
-  EXPECT_EQ(cost.at("T0_ns").get<double>(), 20.0);
-  double predicted = 0;
+  EXPECT_EQ(cost.at("eq10").at("T0_ns").get<double>(), 20.0);
+  const double working_set = j.at("grid").at("bytes").get<double>() + j.at("grid").at("N").get<double>() * 36;
+  const double level = std::log2(working_set / 1024);
+  double eq10 = 0, extended = 0;
   for (const char* cls : {"camera", "shadow", "bounce1", "bounce2", "bounce3+"}) {
     const auto& c = j.at("rays").at(cls);
     const double n = c.at("count").get<double>();
-    if (n > 0)
-      predicted += n * (20 + 3 * c.at("cells_per_ray").get<double>() + 7 * c.at("refs_per_ray").get<double>()) * 1e-9;
+    const auto& mine = cost.at("per_class").at(cls);
+    if (n == 0) continue;
+    const double cells = c.at("cells_per_ray").get<double>(), tests = c.at("tests_per_ray").get<double>();
+    const double occupied = c.at("occupied_cells_per_ray").get<double>();
+    const double T0 = std::string(cls) == "camera" ? 11 : std::string(cls) == "shadow" ? 17 : 13;
+    const double e10 = n * (20 + 3 * cells + 7 * tests) * 1e-9;
+    const double ext = n * 1e-9 *
+                       (T0 + (cells - occupied) + 19 * occupied + 2 * occupied * level + 7 * tests + 3 * tests * level +
+                        5 * c.at("mailbox_skips_per_ray").get<double>() + 23 * c.at("hit_fraction").get<double>());
+    EXPECT_NEAR(mine.at("eq10_s").get<double>(), e10, 1e-9 * e10) << cls;
+    EXPECT_NEAR(mine.at("extended_s").get<double>(), ext, 1e-9 * ext) << cls;
+    eq10 += e10, extended += ext;
   }
-  EXPECT_NEAR(cost.at("predicted_s").get<double>(), predicted, 1e-9 * predicted);
+  EXPECT_NEAR(cost.at("eq10").at("predicted_s").get<double>(), eq10, 1e-9 * eq10);
+  EXPECT_NEAR(cost.at("extended").at("predicted_s").get<double>(), extended, 1e-9 * extended);
+  EXPECT_EQ(cost.at("extended").at("constants").at("T_hit_ns").get<double>(), 23.0);
+}
+
+TEST(RenderReport, TraversalTimeNeverExceedsTheThreadsTime) {
+  // Every query is timed: a class's time, and their sum, fit in the frame's
+  // thread time (threads x wall), which sampled timing (one query in 64,
+  // counted 64 times) did not guarantee.
+  test::TempDir tmp;
+  for (const char* accel : {"grid", "naive"}) {
+    const auto r = test::run_kappa({"render", cornell(), "--spp", "4", "--width", "32", "--height", "32", "--accel",
+                                    accel, "--out", (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(),
+                                    "--quiet"});
+    ASSERT_EQ(r.exit_code, 0) << r.std_err;
+    const auto j = nlohmann::json::parse(test::read_file(tmp / "x.json"));
+    const double thread_time = j.at("render").at("threads").get<double>() * j.at("render").at("time_s").get<double>();
+    const auto& cost = j.at("cost");
+    double sum = 0;
+    for (const auto& [cls, c] : cost.at("per_class").items()) {
+      const double s = c.at("measured_s").get<double>();
+      EXPECT_GE(s, 0.0) << cls;
+      EXPECT_LE(s, thread_time) << accel << " " << cls;
+      EXPECT_EQ(s, j.at("rays").at(cls).at("time_s").get<double>()) << cls;
+      sum += s;
+    }
+    EXPECT_GT(sum, 0.0) << accel;
+    EXPECT_NEAR(cost.at("measured_s").get<double>(), sum, 1e-12 * sum);
+    EXPECT_LE(sum, thread_time) << accel;
+    EXPECT_TRUE(cost.at("capped_queries").is_number_unsigned()) << accel;
+    EXPECT_EQ(cost.at("eq10").is_null(), std::string(accel) == "naive" || cost.at("calibration").is_null()) << accel;
+  }
 }
 
 TEST(RenderReport, UnwritableReportPathIsRefusedBeforeRendering) {

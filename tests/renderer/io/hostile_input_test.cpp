@@ -58,7 +58,7 @@ TEST(HostileInput, NoOutputReplacesAnInputOfTheRun) {
       {{"bench", scene.string(), "--n", "100", "--accel", "grid", "--threads", "1", "--repeat", "1", "--json",
         mtl.string()},
        mtl, mtl_text},
-      {{"calibrate", scene.string(), "--n", "100", "--repeat", "1", "--out", scene.string()}, scene, scene_text},
+      {{"calibrate", scene.string(), "--size", "32", "--repeat", "1", "--out", scene.string()}, scene, scene_text},
   };
   // render: --report onto the scene, the MTL through "..", the scene through
   // a symlink and the OBJ through a hard link.
@@ -72,7 +72,7 @@ TEST(HostileInput, NoOutputReplacesAnInputOfTheRun) {
     expect_refused_and_untouched(run_kappa(c.args, tmp.path()), c.input, c.before);
   }
   // The calibration file a render reads is an input too.
-  write_file(tmp / "cal.json", R"({"T0_ns": 20, "Ts_ns": 3, "Th_ns": 7})");
+  write_file(tmp / "cal.json", R"({"format": 2, "eq10": {"constants": {"T0_ns": 20, "Ts_ns": 3, "Th_ns": 7}}})");
   std::vector<std::string> args = cheap_render(scene, out);
   args.insert(args.end(), {"--calibration", (tmp / "cal.json").string(), "--report", (tmp / "cal.json").string()});
   expect_refused_and_untouched(run_kappa(args, tmp.path()), tmp / "cal.json", read_file(tmp / "cal.json"));

@@ -97,7 +97,7 @@ TEST(ReportKeys, EveryDocumentedKeyIsInTheReports) {
   const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
   test::TempDir tmp;
   // A calibration, so that the render's cost section is filled.
-  const auto cal = test::run_kappa({"calibrate", scene, "--n", "200", "--repeat", "1", "--density", "2,32", "--out",
+  const auto cal = test::run_kappa({"calibrate", scene, "--size", "32", "--spp", "2", "--repeat", "1", "--density", "2,32", "--out",
                                     (tmp / "cal.json").string()});
   ASSERT_EQ(cal.exit_code, 0) << cal.std_err;
   const nlohmann::json render = report_of({"render", scene, "--spp", "2", "--width", "32", "--height", "32", "--out",

@@ -62,15 +62,23 @@ TEST(StatsTable, OtherAcceleratorsShowRaysHitsAndTime) {
   EXPECT_NE(lines[2].find(" -"), std::string::npos) << lines[2];
 }
 
-TEST(StatsTable, Eq10LineComesFirstWhenTheReportHasACost) {
+TEST(StatsTable, CostLineComesFirstWhenTheReportHasAPrediction) {
   json report;
   report["rays"] = {{"camera", grid_class(6, 6)}};
-  report["cost"] = {{"T0_ns", 10.0},      {"Ts_ns", 3.0},       {"Th_ns", 5.0},
-                    {"predicted_s", 1.5}, {"measured_s", 2.0}, {"relative_error", -0.25}};
-  const auto lines = lines_of(stats_table(report));
+  report["cost"] = {{"measured_s", 2.0},
+                    {"eq10",
+                     {{"T0_ns", 10.0}, {"Ts_ns", 3.0}, {"Th_ns", 5.0}, {"predicted_s", 1.5}, {"relative_error", -0.25}}},
+                    {"extended", {{"predicted_s", 2.1}, {"relative_error", 0.05}}}};
+  auto lines = lines_of(stats_table(report));
   ASSERT_EQ(lines.size(), 3u);
-  EXPECT_EQ(lines[0].rfind("cost (eq 10", 0), 0u) << lines[0];
-  EXPECT_NE(lines[0].find("-0.250"), std::string::npos) << lines[0];
+  EXPECT_EQ(lines[0].rfind("cost (thread-seconds of traversal): measured 2.000 s; eq 10 1.500 s (error -0.250", 0), 0u)
+      << lines[0];
+  EXPECT_NE(lines[0].find("extended 2.100 s (error +0.050)"), std::string::npos) << lines[0];
+  // Measured without a calibration: no prediction, no line.
+  report["cost"]["eq10"] = nullptr;
+  report["cost"]["extended"] = nullptr;
+  lines = lines_of(stats_table(report));
+  EXPECT_EQ(lines.size(), 2u);
 }
 
 TEST(StatsTable, GridLineGivesOccupancyBesideEqs19And21) {
