@@ -9,10 +9,6 @@
 namespace kappa {
 namespace {
 
-const char* kind_name(QueryKind k) {
-  return k == QueryKind::camera ? "camera" : k == QueryKind::any ? "any" : "closest";
-}
-
 }  // namespace
 
 Calibration fit_calibration(std::span<const TimedLoad> measurements) {
@@ -36,7 +32,7 @@ nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> 
     for (const TimedLoad& m : measurements) {
       const double r = m.load.rays;
       j["measurements"].push_back({{"label", m.label},
-                                   {"kind", kind_name(m.load.kind)},
+                                   {"class", kRenderClassNames[m.load.ray_class]},
                                    {"rays", r},
                                    {"ns_per_ray", m.seconds / r * 1e9},
                                    {"cells_per_ray", m.load.cells / r},
@@ -56,6 +52,17 @@ std::filesystem::path default_calibration_path() {
   std::error_code ec;
   const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   return (ec ? std::filesystem::path(".") : exe.parent_path()) / "kappa_calibration.json";
+}
+
+bool calibration_format_current(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) return false;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(read_input_file(file, "a calibration file"));
+    return j.is_object() && j.value("format", 0) == kCalibrationFormat;
+  } catch (const std::exception&) {
+    return false;
+  }
 }
 
 std::optional<Calibration> load_calibration(const std::filesystem::path& file) {

@@ -16,7 +16,7 @@ namespace kappa {
 
 /// The calibration file's format; files of another one were made by another
 /// Kappa and are refused with a word to run `kappa calibrate` again.
-inline constexpr int kCalibrationFormat = 2;
+inline constexpr int kCalibrationFormat = 3;
 
 struct Calibration {
   TimeModel eq10 = eq10_model();
@@ -36,6 +36,10 @@ nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> 
 /// kappa_calibration.json beside the running executable (build/ for a build
 /// tree): where `kappa calibrate` writes and `kappa render` looks by default.
 std::filesystem::path default_calibration_path();
+
+/// Whether a calibration file is of this Kappa's format (a cheap look at its
+/// "format"; false for a missing or malformed file too).
+bool calibration_format_current(const std::filesystem::path& file);
 
 /// Reads a calibration file; nullopt if it does not exist. Throws
 /// InputError naming the file if it is malformed or of another format.

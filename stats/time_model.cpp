@@ -9,23 +9,21 @@
 namespace kappa {
 namespace {
 
-/// log2 of the working set over the cache, 0 while it fits.
-double memory_level(double working_set_bytes, double cache_bytes) {
-  return cache_bytes > 0 && working_set_bytes > cache_bytes ? std::log2(working_set_bytes / cache_bytes) : 0.0;
+/// The share of the working set beyond the cache: 0 while it fits.
+double beyond_cache(double working_set_bytes, double cache_bytes) {
+  return cache_bytes > 0 && working_set_bytes > cache_bytes ? 1.0 - cache_bytes / working_set_bytes : 0.0;
 }
 
-/// Solves the normal equations restricted to the unknowns in `free` (the
-/// others held at 0) by Gauss-Jordan elimination with partial pivoting.
-/// False when a pivot is tiny against the diagonal: the measurements do not
-/// separate those unknowns.
-bool solve_subset(const std::vector<std::vector<double>>& normal, const std::vector<double>& rhs,
-                  const std::vector<int>& free, std::vector<double>& x) {
-  const std::size_t n = free.size();
+/// Least squares of A x = b over the columns in `passive` (the others 0), by
+/// the normal equations with partial pivoting; false if they are singular.
+bool solve_passive(const std::vector<std::vector<double>>& ata, const std::vector<double>& atb,
+                   const std::vector<int>& passive, std::vector<double>& x) {
+  const std::size_t n = passive.size();
   std::vector<std::vector<double>> m(n, std::vector<double>(n + 1));
   double scale = 0;
   for (std::size_t r = 0; r < n; ++r) {
-    for (std::size_t c = 0; c < n; ++c) m[r][c] = normal[free[r]][free[c]];
-    m[r][n] = rhs[free[r]];
+    for (std::size_t c = 0; c < n; ++c) m[r][c] = ata[passive[r]][passive[c]];
+    m[r][n] = atb[passive[r]];
     scale = std::max(scale, std::abs(m[r][r]));
   }
   for (std::size_t c = 0; c < n; ++c) {
@@ -41,8 +39,54 @@ bool solve_subset(const std::vector<std::vector<double>>& normal, const std::vec
     }
   }
   std::fill(x.begin(), x.end(), 0.0);
-  for (std::size_t r = 0; r < n; ++r) x[free[r]] = m[r][n] / m[r][r];
+  for (std::size_t r = 0; r < n; ++r) x[passive[r]] = m[r][n] / m[r][r];
   return true;
+}
+
+/// Non-negative least squares (Lawson and Hanson 1974, ch. 23) on the normal
+/// equations: the active-set method, which ends at the optimum.
+std::vector<double> nnls(const std::vector<std::vector<double>>& ata, const std::vector<double>& atb) {
+  const std::size_t n = atb.size();
+  std::vector<double> x(n, 0.0), z(n, 0.0);
+  std::vector<bool> in_passive(n, false);
+  const auto gradient = [&](std::size_t i) {  // A^T (b - A x), component i
+    double g = atb[i];
+    for (std::size_t j = 0; j < n; ++j) g -= ata[i][j] * x[j];
+    return g;
+  };
+  double scale = 0;
+  for (std::size_t i = 0; i < n; ++i) scale = std::max(scale, std::abs(atb[i]));
+  for (int outer = 0; outer < 3 * int(n) + 10; ++outer) {
+    std::size_t best = n;
+    double best_g = 1e-12 * scale;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!in_passive[i] && gradient(i) > best_g) best = i, best_g = gradient(i);
+    if (best == n) break;  // Kuhn-Tucker conditions hold
+    in_passive[best] = true;
+    for (int inner = 0; inner < 3 * int(n) + 10; ++inner) {
+      std::vector<int> passive;
+      for (std::size_t i = 0; i < n; ++i)
+        if (in_passive[i]) passive.push_back(int(i));
+      if (!solve_passive(ata, atb, passive, z)) {  // a column dependent on the others: leave it out
+        in_passive[best] = false;
+        break;
+      }
+      bool feasible = true;
+      for (int i : passive) feasible = feasible && z[i] > 0;
+      if (feasible) {
+        x = z;
+        break;
+      }
+      // Step from x towards z as far as stays feasible, and drop what hits 0.
+      double alpha = 1;
+      for (int i : passive)
+        if (z[i] <= 0) alpha = std::min(alpha, x[i] / (x[i] - z[i]));
+      for (std::size_t i = 0; i < n; ++i) x[i] += alpha * (z[i] - x[i]);
+      for (int i : passive)
+        if (x[i] <= 1e-15) in_passive[i] = false, x[i] = 0;
+    }
+  }
+  return x;
 }
 
 }  // namespace
@@ -63,8 +107,10 @@ TimeModel eq10_model() {
 TimeModel extended_model(double cache_bytes) {
   TimeModel m;
   m.name = "extended";
-  m.terms = {"T0_camera", "T0_closest", "T0_any", "Ts_empty", "Ts_occupied", "Ts_memory",
-             "Th",        "Th_memory",  "T_skip", "T_hit"};
+  for (const char* c : kRenderClassNames) m.terms.push_back(std::string("T0_") + c);
+  for (const char* t : {"Ts", "Ts_occupied", "Th", "T_hit"}) m.terms.push_back(t);
+  for (const char* c : kRenderClassNames) m.terms.push_back(std::string("Ts_miss_") + c);
+  for (const char* c : kRenderClassNames) m.terms.push_back(std::string("Th_miss_") + c);
   m.ns.assign(m.terms.size(), 0.0);
   m.cache_bytes = cache_bytes;
   return m;
@@ -74,17 +120,17 @@ std::vector<double> TimeModel::features_per_ray(const QueryLoad& load) const {
   const double r = load.rays > 0 ? load.rays : 1.0;
   const double cells = load.cells / r, occupied = load.occupied / r, tests = load.tests / r;
   if (name == "eq10") return {1.0, cells, tests};
-  const double level = memory_level(load.working_set_bytes, cache_bytes);
-  return {load.kind == QueryKind::camera ? 1.0 : 0.0,
-          load.kind == QueryKind::closest ? 1.0 : 0.0,
-          load.kind == QueryKind::any ? 1.0 : 0.0,
-          cells - occupied,
-          occupied,
-          occupied * level,
-          tests,
-          tests * level,
-          load.skips / r,
-          load.hits / r};
+  const double miss = beyond_cache(load.working_set_bytes, cache_bytes);
+  std::vector<double> f(terms.size(), 0.0);
+  const std::size_t k = load.ray_class;
+  f[k] = 1.0;
+  f[kRenderClasses + 0] = cells;
+  f[kRenderClasses + 1] = occupied;
+  f[kRenderClasses + 2] = tests;
+  f[kRenderClasses + 3] = load.hits / r;
+  f[kRenderClasses + 4 + k] = cells * miss;
+  f[2 * kRenderClasses + 4 + k] = tests * miss;
+  return f;
 }
 
 double TimeModel::seconds(const QueryLoad& load) const {
@@ -131,22 +177,10 @@ void fit(TimeModel& model, std::span<const TimedLoad> measurements) {
   std::vector<int> all(n);
   for (std::size_t i = 0; i < n; ++i) all[i] = int(i);
   std::vector<double> x(n, 0.0);
-  if (!solve_subset(normal, rhs, all, x))
+  if (!solve_passive(normal, rhs, all, x))
     throw std::runtime_error("calibration: the measurements do not determine the " + model.name + " model's constants");
-  // Non-negative least squares by trying every subset of free constants:
-  // the optimum is the unconstrained fit on its own support, so the best
-  // feasible subset is it. 2^n solves of at most n x n: nothing for n <= 12.
-  double best = INFINITY;
-  std::vector<double> best_x(n, 0.0);
-  for (unsigned mask = 1; mask < (1u << n); ++mask) {
-    std::vector<int> free;
-    for (std::size_t i = 0; i < n; ++i)
-      if (mask & (1u << i)) free.push_back(int(i));
-    if (!solve_subset(normal, rhs, free, x)) continue;
-    if (std::any_of(x.begin(), x.end(), [](double v) { return v < 0 || !std::isfinite(v); })) continue;
-    if (const double r = residual(x); r < best) best = r, best_x = x;
-  }
-  if (!std::isfinite(best)) throw std::runtime_error("calibration: no fit of " + model.name + " with non-negative constants");
+  const std::vector<double> best_x = nnls(normal, rhs);
+  const double best = residual(best_x);
   model.ns = best_x;
   model.rms_relative_error = std::sqrt(best / double(rows.size()));
 }

@@ -8,7 +8,7 @@ tools/build.sh >/dev/null
 # The cost models' constants (eq 10 and the extended model) are measured once
 # per machine (about 15 s), and again if the file is of an older format, so
 # that the report can set their predictions beside the measured traversal time.
-grep -qs '"format": 2' build/kappa_calibration.json || build/kappa calibrate >/dev/null
+grep -qs '"format": 3' build/kappa_calibration.json || build/kappa calibrate >/dev/null
 # 400 spp take about a minute on 2 cores (grid accelerator).
 # The image goes to the default path, out/cornell-box.exr (out/ is created),
 # the per-frame cost report to out/cornell-box.json.

@@ -55,7 +55,7 @@ struct BenchOptions {
   std::vector<std::string> accels = {"naive", "grid", "embree"};
   std::vector<std::string> rays = {"camera", "bounce", "shadow", "lines"};
   std::vector<int> threads = {1, 2};
-  int repeat = 5;
+  int repeat = 3;
   std::size_t n = std::size_t(1) << 20;  ///< rays per class
   std::uint64_t seed = 0;
   std::string json;        ///< write the figures here too
@@ -66,9 +66,9 @@ struct BenchOptions {
 struct CalibrateOptions {
   std::vector<std::string> scenes;  ///< default: the Cornell box and the low-resolution bunny in assets/
   std::vector<double> densities = {2, 8, 32, 128, 512};
-  int spp = 4;     ///< samples per pixel of each calibration frame
-  int size = 128;  ///< each calibration frame is size x size pixels
-  int repeat = 5;
+  int spp = 16;   ///< samples per pixel of each calibration frame (the cost issue's renders use 16)
+  int size = 64;   ///< each calibration frame is the centre size x size pixels of the scene's film
+  int repeat = 3;
   int threads = 0;  ///< threads walking at once (0 = all cores, as a render runs)
   AccelOptions build;  ///< grid_max_bytes only: the densities set the resolutions
   std::string out;  ///< default: default_calibration_path()

@@ -124,7 +124,16 @@ int run_render(const RenderOptions& options) {
   const auto report_out = optional_output(options.report);
   const auto cell_map_out = optional_output(options.cell_map, OutputKind::image);
   // The calibration too is read now: a bad file must not cost a finished render.
-  const std::optional<Calibration> calibration = load_calibration(calibration_path);
+  // One left beside the binary by an older Kappa is set aside with a word (a
+  // rebuild must not stop every render); one named with --calibration is
+  // refused.
+  std::optional<Calibration> calibration;
+  if (options.calibration.empty() && std::filesystem::exists(calibration_path) &&
+      !calibration_format_current(calibration_path))
+    std::fprintf(stderr, "kappa: warning: %s: a calibration of another format, from another Kappa, is not used: "
+                 "run kappa calibrate again\n", calibration_path.c_str());
+  else
+    calibration = load_calibration(calibration_path);
   if (!calibration && !options.calibration.empty())
     throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
 

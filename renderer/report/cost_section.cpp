@@ -6,10 +6,6 @@
 namespace kappa {
 namespace {
 
-QueryKind kind_of(std::size_t render_class) {
-  return render_class == kCamera ? QueryKind::camera : render_class == kShadow ? QueryKind::any : QueryKind::closest;
-}
-
 nlohmann::ordered_json relative_error(double predicted, double measured) {
   return measured > 0 ? nlohmann::ordered_json(predicted / measured - 1.0) : nlohmann::ordered_json();
 }
@@ -29,7 +25,7 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
   nlohmann::ordered_json per_class = nlohmann::ordered_json::object();
   for (std::size_t k = 0; k < kRenderClasses; ++k) {
     const ClassTotals& t = rc.classes[k].totals;
-    const QueryLoad load{kind_of(k),      double(t.rays),          double(t.cells), double(t.occupied_cells),
+    const QueryLoad load{RenderClass(k),      double(t.rays),          double(t.cells), double(t.occupied_cells),
                          double(t.tests), double(t.mailbox_skips), double(t.hits),  working_set};
     const double m = clock.seconds(rc.ticks[k]);
     measured += m;

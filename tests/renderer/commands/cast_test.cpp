@@ -2,6 +2,7 @@
 // documented keys with numbers or null, never NaN.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
@@ -109,11 +110,17 @@ TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
   test::TempDir tmp;
   // A calibration of known constants, so that the cost section does not
   // depend on a file another run may have left beside the binary.
-  test::write_file(tmp / "cal.json", R"({"format": 2, "machine": "test", "clock": "tsc", "samples": 0,
+  // Extended constants: T0 per class 11, 12, ..., 15; Ts 1, Ts_occupied 19, Th 7, T_hit 23; the
+  // per-class miss terms 2 + class (cells) and 3 + class (tests).
+  std::string constants = R"("T0_camera_ns": 11, "T0_shadow_ns": 12, "T0_bounce1_ns": 13, "T0_bounce2_ns": 14,
+    "T0_bounce3+_ns": 15, "Ts_ns": 1, "Ts_occupied_ns": 19, "Th_ns": 7, "T_hit_ns": 23)";
+  const char* classes[] = {"camera", "shadow", "bounce1", "bounce2", "bounce3+"};
+  for (int k = 0; k < 5; ++k)
+    constants += ", \"Ts_miss_" + std::string(classes[k]) + "_ns\": " + std::to_string(2 + k) + ", \"Th_miss_" +
+                classes[k] + "_ns\": " + std::to_string(3 + k);
+  test::write_file(tmp / "cal.json", R"({"format": 3, "machine": "test", "clock": "tsc", "samples": 0,
     "eq10": {"constants": {"T0_ns": 20, "Ts_ns": 3, "Th_ns": 7}},
-    "extended": {"cache_bytes": 1024, "constants": {"T0_camera_ns": 11, "T0_closest_ns": 13, "T0_any_ns": 17,
-      "Ts_empty_ns": 1, "Ts_occupied_ns": 19, "Ts_memory_ns": 2, "Th_ns": 7, "Th_memory_ns": 3, "T_skip_ns": 5,
-      "T_hit_ns": 23}}})");
+    "extended": {"cache_bytes": 1024, "constants": {)" + constants + "}}}");
   const auto r = test::run_kappa({"render", cornell(), "--spp", "2", "--width", "24", "--height", "24", "--out",
                                   (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(), "--calibration",
                                   (tmp / "cal.json").string()});
@@ -128,20 +135,21 @@ TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
   ASSERT_TRUE(cost.is_object());
   EXPECT_EQ(cost.at("eq10").at("T0_ns").get<double>(), 20.0);
   const double working_set = j.at("grid").at("bytes").get<double>() + j.at("grid").at("N").get<double>() * 36;
-  const double level = std::log2(working_set / 1024);
+  const double miss = 1 - 1024 / working_set;
   double eq10 = 0, extended = 0;
-  for (const char* cls : {"camera", "shadow", "bounce1", "bounce2", "bounce3+"}) {
+  for (const char* cls : classes) {
     const auto& c = j.at("rays").at(cls);
     const double n = c.at("count").get<double>();
     const auto& mine = cost.at("per_class").at(cls);
     if (n == 0) continue;
     const double cells = c.at("cells_per_ray").get<double>(), tests = c.at("tests_per_ray").get<double>();
     const double occupied = c.at("occupied_cells_per_ray").get<double>();
-    const double T0 = std::string(cls) == "camera" ? 11 : std::string(cls) == "shadow" ? 17 : 13;
+    const int k = int(std::find_if(std::begin(classes), std::end(classes), [&](const char* x) { return std::string(x) == cls; }) -
+                      std::begin(classes));
     const double e10 = n * (20 + 3 * cells + 7 * tests) * 1e-9;
     const double ext = n * 1e-9 *
-                       (T0 + (cells - occupied) + 19 * occupied + 2 * occupied * level + 7 * tests + 3 * tests * level +
-                        5 * c.at("mailbox_skips_per_ray").get<double>() + 23 * c.at("hit_fraction").get<double>());
+                       (11 + k + cells + 19 * occupied + 7 * tests + 23 * c.at("hit_fraction").get<double>() +
+                        (2 + k) * cells * miss + (3 + k) * tests * miss);
     EXPECT_NEAR(mine.at("eq10_s").get<double>(), e10, 1e-9 * e10) << cls;
     EXPECT_NEAR(mine.at("extended_s").get<double>(), ext, 1e-9 * ext) << cls;
     eq10 += e10, extended += ext;
