@@ -98,6 +98,7 @@ double l2_cache_bytes() {
 
 TimeModel eq10_model() {
   TimeModel m;
+  m.form = ModelForm::eq10;
   m.name = "eq10";
   m.terms = {"T0", "Ts", "Th"};
   m.ns.assign(m.terms.size(), 0.0);
@@ -106,6 +107,7 @@ TimeModel eq10_model() {
 
 TimeModel extended_model(double cache_bytes) {
   TimeModel m;
+  m.form = ModelForm::extended;
   m.name = "extended";
   for (const char* c : kRenderClassNames) m.terms.push_back(std::string("T0_") + c);
   for (const char* t : {"Ts", "Ts_occupied", "Th", "T_hit"}) m.terms.push_back(t);
@@ -119,7 +121,7 @@ TimeModel extended_model(double cache_bytes) {
 std::vector<double> TimeModel::features_per_ray(const QueryLoad& load) const {
   const double r = load.rays > 0 ? load.rays : 1.0;
   const double cells = load.cells / r, occupied = load.occupied / r, tests = load.tests / r;
-  if (name == "eq10") return {1.0, cells, tests};
+  if (form == ModelForm::eq10) return {1.0, cells, tests};
   const double miss = beyond_cache(load.working_set_bytes, cache_bytes);
   std::vector<double> f(terms.size(), 0.0);
   const std::size_t k = load.ray_class;
@@ -189,7 +191,7 @@ nlohmann::ordered_json to_json(const TimeModel& model) {
   nlohmann::ordered_json constants;
   for (std::size_t i = 0; i < model.terms.size(); ++i) constants[model.terms[i] + "_ns"] = model.ns[i];
   nlohmann::ordered_json j = {{"constants", constants}, {"rms_relative_error", model.rms_relative_error}};
-  if (model.name == "extended") j["cache_bytes"] = model.cache_bytes;
+  if (model.form == ModelForm::extended) j["cache_bytes"] = model.cache_bytes;
   return j;
 }
 
@@ -202,7 +204,7 @@ bool from_json(const nlohmann::json& j, TimeModel& model) {
     if (!std::isfinite(model.ns[i]) || model.ns[i] < 0) return false;
   }
   model.rms_relative_error = j.value("rms_relative_error", 0.0);
-  if (model.name == "extended") {
+  if (model.form == ModelForm::extended) {
     if (!j.contains("cache_bytes") || !j["cache_bytes"].is_number()) return false;
     model.cache_bytes = j["cache_bytes"].get<double>();
     if (!(model.cache_bytes > 0) || !std::isfinite(model.cache_bytes)) return false;

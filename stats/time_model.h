@@ -55,9 +55,13 @@ struct QueryLoad {
   double working_set_bytes = 0;  ///< the accelerator's bytes plus the triangles'
 };
 
+/// The two forms of model.
+enum class ModelForm { eq10, extended };
+
 /// A model linear in its constants: seconds = sum_i c_i f_i(load).
 struct TimeModel {
-  std::string name;
+  ModelForm form = ModelForm::eq10;
+  std::string name;  ///< "eq10" or "extended", for messages
   std::vector<std::string> terms;  ///< the constants' names, in ns
   std::vector<double> ns;          ///< the fitted constants (ns per unit of each feature)
   double cache_bytes = 0;          ///< L2 size the working-set terms are relative to (extended only)
