@@ -132,6 +132,7 @@ EmbreeAccelerator::EmbreeAccelerator(std::span<const Triangle> triangles, TaskPr
           progress);
     }
     rtcCommitScene(m_scene);
+    if (progress) rtcSetSceneProgressMonitorFunction(m_scene, nullptr, nullptr);  // `progress` dies after the build
     check("building the BVH");
   } catch (...) {
     if (m_scene) rtcReleaseScene(m_scene);

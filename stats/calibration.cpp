@@ -54,14 +54,18 @@ std::filesystem::path default_calibration_path() {
   return (ec ? std::filesystem::path(".") : exe.parent_path()) / "kappa_calibration.json";
 }
 
-bool calibration_format_current(const std::filesystem::path& file) {
+bool calibration_of_another_format(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return false;
   try {
     const nlohmann::json j = nlohmann::json::parse(read_input_file(file, "a calibration file"));
-    return j.is_object() && j.value("format", 0) == kCalibrationFormat;
+    if (!j.is_object()) return false;
+    const auto format = j.find("format");
+    // The first format had no "format" key, only eq 10's three constants.
+    if (format == j.end()) return j.contains("T0_ns");
+    return !format->is_number_integer() || format->get<int>() != kCalibrationFormat;
   } catch (const std::exception&) {
-    return false;
+    return false;  // malformed: load_calibration says so, with the file's name
   }
 }
 

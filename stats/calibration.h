@@ -37,9 +37,10 @@ nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> 
 /// tree): where `kappa calibrate` writes and `kappa render` looks by default.
 std::filesystem::path default_calibration_path();
 
-/// Whether a calibration file is of this Kappa's format (a cheap look at its
-/// "format"; false for a missing or malformed file too).
-bool calibration_format_current(const std::filesystem::path& file);
+/// Whether `file` is a calibration of another Kappa's format: JSON whose
+/// "format" is not this one's. False for a missing or malformed file (which
+/// load_calibration reports) and for a current one.
+bool calibration_of_another_format(const std::filesystem::path& file);
 
 /// Reads a calibration file; nullopt if it does not exist. Throws
 /// InputError naming the file if it is malformed or of another format.

@@ -41,13 +41,19 @@ QueryClock::QueryClock(bool tsc) : m_tsc(tsc) {
   m_tsc = false;
 #endif
   if (m_tsc) {
-    // The TSC's rate against steady_clock over 20 ms: an error of a few
-    // nanoseconds in 20 ms, 1e-7 of every time.
-    const std::uint64_t t0 = steady_ns(), c0 = now();
-    std::uint64_t t1 = t0;
-    while (t1 - t0 < 20'000'000) t1 = steady_ns();
-    const std::uint64_t c1 = now();
-    m_ticks_per_second = double(c1 - c0) / (double(t1 - t0) * 1e-9);
+    // The TSC's rate against steady_clock over five windows of 5 ms, the
+    // median: a window in which the thread was preempted between its paired
+    // reads cannot skew every time of the process.
+    std::array<double, 5> rates;
+    for (double& rate : rates) {
+      const std::uint64_t t0 = steady_ns(), c0 = now();
+      std::uint64_t t1 = t0;
+      while (t1 - t0 < 5'000'000) t1 = steady_ns();
+      const std::uint64_t c1 = now();
+      rate = double(c1 - c0) / (double(t1 - t0) * 1e-9);
+    }
+    std::nth_element(rates.begin(), rates.begin() + 2, rates.end());
+    m_ticks_per_second = rates[2];
   }
   // What timing an empty query costs: the median of many back-to-back reads.
   std::array<std::uint64_t, 1001> d;

@@ -21,7 +21,8 @@ class QueryClock {
   /// it counts as this long, and as capped.
   static constexpr double kQueryCapSeconds = 100e-6;
 
-  /// The process's clock, set up (and its tick rate measured) on first use.
+  /// The process's clock, set up (and its tick rate measured, about 25 ms) on
+  /// first use: call it before anything timed.
   static const QueryClock& get();
 
   /// Ticks: TSC cycles, or steady_clock nanoseconds.
@@ -31,8 +32,14 @@ class QueryClock {
 #endif
     return steady_ns();
   }
-  /// The ticks a query took, less the clock's own cost, and whether it was capped.
+  /// The ticks a query took, less the clock's own cost, and whether it was
+  /// capped. An end before the start (a thread moved between CPUs whose
+  /// counters differ) is no time at all, and counts as capped: untrusted.
   std::uint64_t elapsed(std::uint64_t start, std::uint64_t end, bool& capped) const {
+    if (end < start) {
+      capped = true;
+      return 0;
+    }
     const std::uint64_t d = end - start > m_overhead_ticks ? end - start - m_overhead_ticks : 0;
     capped = d > m_cap_ticks;
     return capped ? m_cap_ticks : d;

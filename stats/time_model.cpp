@@ -16,15 +16,23 @@ double beyond_cache(double working_set_bytes, double cache_bytes) {
 
 /// Least squares of A x = b over the columns in `passive` (the others 0), by
 /// the normal equations with partial pivoting; false if they are singular.
+/// The columns are scaled to unit length first (a per-ray term and a per-cell
+/// term differ by 1e4 on the diagonal), so that "singular" means columns that
+/// really are dependent, not ones of different units.
 bool solve_passive(const std::vector<std::vector<double>>& ata, const std::vector<double>& atb,
                    const std::vector<int>& passive, std::vector<double>& x) {
   const std::size_t n = passive.size();
-  std::vector<std::vector<double>> m(n, std::vector<double>(n + 1));
-  double scale = 0;
+  std::vector<double> unit(n);
   for (std::size_t r = 0; r < n; ++r) {
-    for (std::size_t c = 0; c < n; ++c) m[r][c] = ata[passive[r]][passive[c]];
-    m[r][n] = atb[passive[r]];
-    scale = std::max(scale, std::abs(m[r][r]));
+    const double d = ata[passive[r]][passive[r]];
+    if (!(d > 0)) return false;  // a column of zeros
+    unit[r] = 1.0 / std::sqrt(d);
+  }
+  std::vector<std::vector<double>> m(n, std::vector<double>(n + 1));
+  const double scale = 1.0;  // the scaled diagonal
+  for (std::size_t r = 0; r < n; ++r) {
+    for (std::size_t c = 0; c < n; ++c) m[r][c] = ata[passive[r]][passive[c]] * unit[r] * unit[c];
+    m[r][n] = atb[passive[r]] * unit[r];
   }
   for (std::size_t c = 0; c < n; ++c) {
     std::size_t pivot = c;
@@ -39,7 +47,7 @@ bool solve_passive(const std::vector<std::vector<double>>& ata, const std::vecto
     }
   }
   std::fill(x.begin(), x.end(), 0.0);
-  for (std::size_t r = 0; r < n; ++r) x[passive[r]] = m[r][n] / m[r][r];
+  for (std::size_t r = 0; r < n; ++r) x[passive[r]] = m[r][n] / m[r][r] * unit[r];
   return true;
 }
 
@@ -48,7 +56,7 @@ bool solve_passive(const std::vector<std::vector<double>>& ata, const std::vecto
 std::vector<double> nnls(const std::vector<std::vector<double>>& ata, const std::vector<double>& atb) {
   const std::size_t n = atb.size();
   std::vector<double> x(n, 0.0), z(n, 0.0);
-  std::vector<bool> in_passive(n, false);
+  std::vector<bool> in_passive(n, false), dependent(n, false);
   const auto gradient = [&](std::size_t i) {  // A^T (b - A x), component i
     double g = atb[i];
     for (std::size_t j = 0; j < n; ++j) g -= ata[i][j] * x[j];
@@ -60,15 +68,16 @@ std::vector<double> nnls(const std::vector<std::vector<double>>& ata, const std:
     std::size_t best = n;
     double best_g = 1e-12 * scale;
     for (std::size_t i = 0; i < n; ++i)
-      if (!in_passive[i] && gradient(i) > best_g) best = i, best_g = gradient(i);
+      if (!in_passive[i] && !dependent[i] && gradient(i) > best_g) best = i, best_g = gradient(i);
     if (best == n) break;  // Kuhn-Tucker conditions hold
     in_passive[best] = true;
     for (int inner = 0; inner < 3 * int(n) + 10; ++inner) {
       std::vector<int> passive;
       for (std::size_t i = 0; i < n; ++i)
         if (in_passive[i]) passive.push_back(int(i));
-      if (!solve_passive(ata, atb, passive, z)) {  // a column dependent on the others: leave it out
+      if (!solve_passive(ata, atb, passive, z)) {  // a column dependent on the others: leave it out for good
         in_passive[best] = false;
+        dependent[best] = true;
         break;
       }
       bool feasible = true;
@@ -79,11 +88,13 @@ std::vector<double> nnls(const std::vector<std::vector<double>>& ata, const std:
       }
       // Step from x towards z as far as stays feasible, and drop what hits 0.
       double alpha = 1;
+      int limiting = -1;
       for (int i : passive)
-        if (z[i] <= 0) alpha = std::min(alpha, x[i] / (x[i] - z[i]));
+        if (z[i] <= 0 && x[i] / (x[i] - z[i]) < alpha) alpha = x[i] / (x[i] - z[i]), limiting = i;
       for (std::size_t i = 0; i < n; ++i) x[i] += alpha * (z[i] - x[i]);
+      if (limiting >= 0) x[limiting] = 0;  // exactly: rounding must not keep it passive
       for (int i : passive)
-        if (x[i] <= 1e-15) in_passive[i] = false, x[i] = 0;
+        if (x[i] <= 0) in_passive[i] = false, x[i] = 0;
     }
   }
   return x;

@@ -67,7 +67,10 @@ void ProgressBar::draw(const TaskProgress::Snapshot& state, bool final_line) {
     m_phase_start = now;
   }
   const double elapsed = now - m_phase_start;
-  std::string line = "\r" + state.phase;
+  // A file name with a control character (a newline, an escape) must not
+  // break the line or reach the terminal as a command.
+  std::string line = "\r";
+  for (char c : state.phase) line += (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) ? '?' : c;
   char text[128];
   if (state.total > 0) {
     const double fraction = std::min(1.0, double(state.done) / double(state.total));

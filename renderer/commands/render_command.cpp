@@ -128,8 +128,7 @@ int run_render(const RenderOptions& options) {
   // rebuild must not stop every render); one named with --calibration is
   // refused.
   std::optional<Calibration> calibration;
-  if (options.calibration.empty() && std::filesystem::exists(calibration_path) &&
-      !calibration_format_current(calibration_path))
+  if (options.calibration.empty() && calibration_of_another_format(calibration_path))
     std::fprintf(stderr, "kappa: warning: %s: a calibration of another format, from another Kappa, is not used: "
                  "run kappa calibrate again\n", calibration_path.c_str());
   else

@@ -52,7 +52,7 @@ TEST(Calibration, TheExtendedModelRecoversEveryTermOfAClosedFormCase) {
           for (double working_set : {0.5 * cache, 4 * cache, 300 * cache}) {
             TimedLoad m;
             m.load = QueryLoad{RenderClass(c), 1000, 1000 * cells, 1000 * cells * occupied_share, 1000 * tests,
-                               1000 * (1 + (i % 5)), 1000 * (i % 3) / 2.0, working_set};
+                               1000.0 * (1 + (i % 5)), 1000.0 * (i % 3) / 2.0, working_set};
             m.seconds = truth.seconds(m.load);
             samples.push_back(m);
             ++i;
@@ -120,9 +120,12 @@ TEST(Calibration, FileRoundTripAndErrors) {
   test::write_file(tmp / "old.json", R"({"T0_ns": 20, "Ts_ns": 3, "Th_ns": 7})");
   // What a render asks of the file beside the binary before it reads it: an
   // older one is set aside with a warning, not a refusal.
-  EXPECT_TRUE(calibration_format_current(tmp / "c.json"));
-  EXPECT_FALSE(calibration_format_current(tmp / "old.json"));
-  EXPECT_FALSE(calibration_format_current(tmp / "none.json"));
+  EXPECT_FALSE(calibration_of_another_format(tmp / "c.json"));
+  EXPECT_TRUE(calibration_of_another_format(tmp / "old.json"));
+  EXPECT_FALSE(calibration_of_another_format(tmp / "none.json"));
+  EXPECT_FALSE(calibration_of_another_format(tmp / "bad.json"));  // malformed: refused by load_calibration
+  test::write_file(tmp / "format2.json", R"({"format": 2, "eq10": {}})");
+  EXPECT_TRUE(calibration_of_another_format(tmp / "format2.json"));
   try {
     load_calibration(tmp / "old.json");
     ADD_FAILURE() << "an old calibration was read";
@@ -139,8 +142,8 @@ TEST(Calibration, CalibrateThenRenderReportsTheCost) {
   ASSERT_EQ(c.exit_code, 0) << c.std_err;
   const auto calibration = nlohmann::json::parse(test::read_file(cal));
   EXPECT_EQ(calibration.at("format"), kCalibrationFormat);
-  // Frames of the two asset scenes at 2 densities and the three soups at
-  // theirs, one measurement per ray class with at least 1000 rays.
+  // Frames of the two asset scenes at 2 densities and the generated soups
+  // and meshes at theirs, one measurement per ray class with at least 256 rays.
   const auto& measurements = calibration.at("measurements");
   EXPECT_EQ(calibration.at("samples"), measurements.size());
   EXPECT_GE(measurements.size(), 20u);

@@ -42,6 +42,10 @@ TEST(QueryClock, AQueryPastTheCapCountsAsTheCapAndIsCounted) {
     // An empty interval never goes negative after the clock's own cost.
     EXPECT_EQ(clock.elapsed(5, 5, capped), 0u);
     EXPECT_FALSE(capped);
+    // An end before the start (counters of two CPUs apart) is no time, and
+    // untrusted: not a wrapped-around 2^64.
+    EXPECT_EQ(clock.elapsed(1000, 400, capped), 0u);
+    EXPECT_TRUE(capped);
   }
 }
 
