@@ -23,8 +23,12 @@ fs::path copy_cornell(const fs::path& dir) {
   return dir / "cornell" / "scene.json";
 }
 
-std::vector<std::string> cheap_render(const fs::path& scene, const fs::path& out) {
-  return {"render", scene.string(), "--spp", "1", "--width", "8", "--height", "8", "-q", "--out", out.string()};
+/// A render of 8x8 pixels at 1 spp into `out`, with `more` flags after.
+std::vector<std::string> cheap_render(const fs::path& scene, const fs::path& out, std::vector<std::string> more = {}) {
+  std::vector<std::string> args = {"render", scene.string(), "--spp", "1", "--width", "8", "--height", "8", "-q",
+                                   "--out", out.string()};
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
 }
 
 void expect_refused_and_untouched(const RunResult& r, const fs::path& input, const std::string& before) {
@@ -82,8 +86,7 @@ TEST(HostileInput, NoOutputReplacesAnInputOfTheRun) {
 TEST(HostileInput, NoTwoOutputsOfARunShareAFile) {
   TempDir tmp;
   const fs::path scene = copy_cornell(tmp.path());
-  std::vector<std::string> args = cheap_render(scene, tmp / "x.exr");
-  args.insert(args.end(), {"--report", (tmp / "x.exr").string()});
+  const std::vector<std::string> args = cheap_render(scene, tmp / "x.exr", {"--report", (tmp / "x.exr").string()});
   const RunResult r = run_kappa(args, tmp.path());
   EXPECT_EQ(r.exit_code, 2) << r.std_err;
   EXPECT_NE(r.std_err.find("is also another output of this run"), std::string::npos) << r.std_err;
@@ -96,9 +99,7 @@ TEST(HostileInput, TextOutputsGoStraightToDevicesAndFifos) {
   const fs::path scene = copy_cornell(tmp.path());
   // /dev/stdout is a link: written through (here to the file the harness
   // captures stdout in), the link itself never replaced.
-  std::vector<std::string> args = cheap_render(scene, tmp / "x.exr");
-  args.insert(args.end(), {"--report", "/dev/stdout"});
-  const RunResult r = run_kappa(args, tmp.path());
+  const RunResult r = run_kappa(cheap_render(scene, tmp / "x.exr", {"--report", "/dev/stdout"}), tmp.path());
   EXPECT_EQ(r.exit_code, 0) << r.std_err;
   EXPECT_NE(r.std_out.find("\"schema_version\""), std::string::npos) << r.std_out;
   EXPECT_TRUE(fs::is_symlink("/dev/stdout"));
@@ -114,9 +115,8 @@ TEST(HostileInput, TextOutputsGoStraightToDevicesAndFifos) {
   ASSERT_EQ(::mkfifo((tmp / "report.fifo").c_str(), 0600), 0);
   std::string received;
   std::thread reader([&] { received = read_file(tmp / "report.fifo"); });
-  std::vector<std::string> to_fifo = cheap_render(scene, tmp / "y.exr");
-  to_fifo.insert(to_fifo.end(), {"--report", (tmp / "report.fifo").string()});
-  const RunResult f = run_kappa(to_fifo, tmp.path(), 60);
+  const RunResult f =
+      run_kappa(cheap_render(scene, tmp / "y.exr", {"--report", (tmp / "report.fifo").string()}), tmp.path(), 60);
   reader.join();
   EXPECT_EQ(f.exit_code, 0) << f.std_err;
   EXPECT_NE(received.find("\"schema_version\""), std::string::npos);
@@ -134,9 +134,7 @@ TEST(HostileInput, ImagesAreNeverWrittenToDevicesAndNothingIsReplaced) {
   EXPECT_TRUE(fs::is_character_file("/dev/null"));
   // A full device: the report's write fails, exit 1 (not the input's fault),
   // and the device is still a device.
-  std::vector<std::string> args = cheap_render(scene, tmp / "x.exr");
-  args.insert(args.end(), {"--report", "/dev/full"});
-  const RunResult full = run_kappa(args, tmp.path());
+  const RunResult full = run_kappa(cheap_render(scene, tmp / "x.exr", {"--report", "/dev/full"}), tmp.path());
   EXPECT_EQ(full.exit_code, 1) << full.std_err;
   EXPECT_NE(full.std_err.find("kappa: internal error: /dev/full: cannot write"), std::string::npos) << full.std_err;
   EXPECT_TRUE(fs::is_character_file("/dev/full"));
