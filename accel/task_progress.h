@@ -36,6 +36,12 @@ class TaskProgress {
     }
     if (m_observer) m_observer(snapshot());
   }
+  /// Renames the current phase (a render's passes: "12 spp, relMSE 0.02")
+  /// without starting a new one: its clock and ETA go on.
+  void rename(std::string phase) {
+    std::lock_guard lock(m_mutex);
+    m_phase = std::move(phase);
+  }
   /// Counts `units` more done; any thread.
   void advance(std::uint64_t units) { m_done.fetch_add(units, std::memory_order_relaxed); }
   /// Sets the state outright (for work that reports absolute progress).

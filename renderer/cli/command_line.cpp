@@ -20,7 +20,17 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   render.add_option("scene", o.scene, "scene.json or .obj file")->required();
   add_accel_flag(render, o.accel, "accelerator");
   add_grid_flags(render, o.build);
-  render.add_option("--spp", o.spp, "samples per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  render.add_option("--spp", o.spp, "samples per pixel (with a budget: the most, if given)")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  render.add_option("--time-budget", o.time_budget,
+                    "render in passes until this time is spent: a number and a unit, 500ms, 30s, 2m, 1h");
+  render.add_option("--target-relmse", o.target_relmse,
+                    "render in passes until the estimated relMSE (mean of (s^2/n)/(mean^2 + 0.01)) is below this");
+  render.add_flag("--adaptive", o.adaptive, "pixels whose own estimate is below --target-relmse stop sampling");
+  render.add_option("--adaptive-min-spp", o.adaptive_min_spp, "samples a pixel takes before --adaptive may stop it")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
   render.add_option("--max-depth", o.max_depth, "bounces after the camera ray (1 = direct lighting)")
       ->check(CLI::Range(0, 1 << 20))
       ->capture_default_str();
@@ -33,7 +43,7 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   render.add_option("--width", o.width, "film width (overrides the scene)")->check(CLI::Range(1, 1 << 15));
   render.add_option("--height", o.height, "film height (overrides the scene)")->check(CLI::Range(1, 1 << 15));
   render.add_option("--out", o.out, "output EXR (default out/<scene name>.exr)");
-  render.add_option("--aov", o.aov, "extra EXR channels: comma list of albedo, normal, depth, cost");
+  render.add_option("--aov", o.aov, "extra EXR channels: comma list of albedo, normal, depth, cost, variance, spp");
   render.add_flag("-q,--quiet", o.quiet, "no progress bar, summary line or statistics table");
   render.add_option("--stats", o.stats, "per ray class: rays, hits and time; with the grid also cells, tests and hits, per cell and in total")
       ->check(CLI::IsMember({"on", "off"}))
@@ -151,7 +161,11 @@ std::optional<int> parse_command_line(int argc, char** argv, Command& command) {
     std::fprintf(stderr, "kappa: error: %s (see kappa --help)\n", printable_line(e.what()).c_str());
     return 2;
   }
-  if (render->parsed()) command = std::move(render_options);
+  if (render->parsed()) {
+    render_options.spp_given = render->count("--spp") > 0;
+    render_options.adaptive_min_spp_given = render->count("--adaptive-min-spp") > 0;
+    command = std::move(render_options);
+  }
   else if (bench->parsed()) command = std::move(bench_options);
   else if (cast->parsed()) command = std::move(cast_options);
   else command = std::move(calibrate_options);  // require_subcommand(1): one of the four

@@ -15,7 +15,13 @@ struct RenderOptions {
   std::string scene;            ///< scene.json or .obj
   std::string accel = "grid";   ///< accelerator name (accel/accel.h)
   AccelOptions build;           ///< --grid-res, --grid-density, --grid-max-bytes
-  int spp = 64;                 ///< samples per pixel
+  int spp = 64;                 ///< samples per pixel (with a budget: the cap, when given)
+  bool spp_given = false;       ///< --spp was on the command line
+  std::string time_budget;      ///< --time-budget: "500ms", "30s", "2m", "1h" ("" = none)
+  std::string target_relmse;    ///< --target-relmse, a number above 0 ("" = none)
+  bool adaptive = false;        ///< --adaptive: converged pixels stop sampling
+  int adaptive_min_spp = 16;    ///< --adaptive-min-spp
+  bool adaptive_min_spp_given = false;
   int max_depth = 32;           ///< bounces after the camera ray
   int rr_depth = 3;             ///< Russian roulette from this bounce on
   bool no_rr = false;           ///< disable Russian roulette
@@ -23,7 +29,7 @@ struct RenderOptions {
   int threads = 0;              ///< 0 = all cores
   int width = 0, height = 0;    ///< 0 = the scene's film size
   std::string out;              ///< default out/<scene name>.exr
-  std::string aov;              ///< comma list of albedo, normal, depth, cost
+  std::string aov;              ///< comma list of albedo, normal, depth, cost, variance, spp
   bool quiet = false;
 #ifdef KAPPA_NO_STATS
   std::string stats = "off";    ///< a build without statistics (-DKAPPA_STATS=OFF) has only off

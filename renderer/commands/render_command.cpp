@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <chrono>
 #include <optional>
 #include <cstdio>
@@ -13,6 +15,8 @@
 #include "accel/factory.h"
 #include "accel/cell_layout.h"
 #include "accel/thread_limit.h"
+#include "renderer/cli/duration.h"
+#include "renderer/cli/interrupt.h"
 #include "renderer/cli/progress.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/cell_map.h"
@@ -39,7 +43,10 @@ AovSelection parse_aovs(const std::string& list) {
     else if (name == "normal") aov.normal = true;
     else if (name == "depth") aov.depth = true;
     else if (name == "cost") aov.cost = true;
-    else if (!name.empty()) throw InputError("--aov: unknown AOV '" + name + "' (expected albedo, normal, depth, cost)");
+    else if (name == "variance") aov.variance = true;
+    else if (name == "spp") aov.spp = true;
+    else if (!name.empty())
+      throw InputError("--aov: unknown AOV '" + name + "' (expected albedo, normal, depth, cost, variance, spp)");
   }
   return aov;
 }
@@ -51,6 +58,38 @@ std::filesystem::path output_path(const RenderOptions& options, const Scene& sce
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError("out: cannot create the output folder: " + ec.message());
   return dir / (scene.name + ".exr");
+}
+
+/// The budgets asked for (pass_planner.h), refused before anything is loaded.
+Budget budget_of(const RenderOptions& options) {
+  Budget budget;
+  if (!options.time_budget.empty()) budget.time_s = parse_duration(options.time_budget, "--time-budget");
+  if (!options.target_relmse.empty()) {
+    const std::string& text = options.target_relmse;
+    double e = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), e);
+    if (ec != std::errc() || end != text.data() + text.size() || !(e > 0) || !std::isfinite(e))
+      throw InputError("--target-relmse: '" + text + "' is not a number above 0");
+    budget.target_relmse = e;
+  }
+  if (options.adaptive && budget.target_relmse == 0)
+    throw InputError("--adaptive: needs --target-relmse (the estimate at which a pixel stops sampling)");
+  if (options.adaptive_min_spp_given && !options.adaptive)
+    throw InputError("--adaptive-min-spp: needs --adaptive");
+  budget.adaptive = options.adaptive;
+  budget.adaptive_min_spp = options.adaptive_min_spp;
+  if (options.spp_given) budget.spp_cap = options.spp;
+  return budget;
+}
+
+/// "pass 4: 24 spp, relMSE 0.0123": what the progress line says of a budgeted render.
+std::string pass_text(const FrameState& state, int passes, const Budget& budget) {
+  char text[160];
+  int n = std::snprintf(text, sizeof text, "rendering, pass %d: %d spp, relMSE %.4g", passes, state.spp,
+                        state.relmse_estimate);
+  if (budget.adaptive && n > 0 && n < int(sizeof text))
+    std::snprintf(text + n, sizeof text - std::size_t(n), ", %zu pixels sampling", state.active_pixels);
+  return text;
 }
 
 /// The cell structure for the EXR's metadata: "64x32x16", or "none".
@@ -74,7 +113,10 @@ std::string traversal_summary(const nlohmann::ordered_json& cost) {
 }  // namespace
 
 int run_render(const RenderOptions& options) {
-  const AovSelection aov = parse_aovs(options.aov);
+  const Budget budget = budget_of(options);
+  AovSelection aov = parse_aovs(options.aov);
+  aov.variance = aov.variance || budget.target_relmse > 0;  // the estimate's inputs, per pixel
+  aov.spp = aov.spp || budget.adaptive;
   if (!options.cell_map.empty() && (options.stats != "on" || options.accel != "grid"))
     throw InputError("--cell-map: needs --accel grid and --stats on");
   if (const auto ext = std::filesystem::path(options.cell_map).extension(); !options.cell_map.empty() && ext != ".exr" &&
@@ -156,16 +198,42 @@ int run_render(const RenderOptions& options) {
   Film film(scene.width, scene.height, aov);
   ProgressBar bar(show_progress);
   begin_phase(bar.task(), "rendering", 0);
-  const RenderResult result =
-      render(scene, *accel, settings, film, [&bar](std::size_t done, std::size_t total) { bar.update(done, total); });
+  RenderResult result;
+  bool interrupted = false;
+  if (budget.any()) {
+    // Passes until a budget is spent; Ctrl-C abandons the pass in progress
+    // and keeps the completed ones (interrupt.h). The progress line shows
+    // the budget's share spent: the time's, or the estimate's (which falls
+    // as 1/spp, so target/estimate is the share of the samples taken).
+    PassPlanner planner(budget, [] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+    });
+    const InterruptGuard guard;
+    PassControl control{&planner, &guard.flag(), [&](const FrameState& state, int passes) {
+                          if (TaskProgress* task = bar.task()) task->rename(pass_text(state, passes, budget));
+                          double share = budget.time_s > 0 ? planner.elapsed() / budget.time_s : 0;
+                          if (budget.target_relmse > 0 && state.spp >= kFirstRelmseCheckSpp && state.relmse_estimate > 0)
+                            share = std::max(share, budget.target_relmse / state.relmse_estimate);
+                          bar.update(std::size_t(std::clamp(share, 0.0, 1.0) * 1000), 1000);
+                        }};
+    settings.passes = &control;
+    result = render(scene, *accel, settings, film);
+    interrupted = result.interrupted || guard.interrupted();
+  } else {
+    result = render(scene, *accel, settings, film, [&bar](std::size_t done, std::size_t total) { bar.update(done, total); });
+  }
   bar.finish();
-  if (result.rejected_samples > 0)
-    std::fprintf(stderr, "kappa: warning: %llu samples had non-finite radiance and were replaced by 0\n",
-                 static_cast<unsigned long long>(result.rejected_samples));
+  if (interrupted && result.passes == 0) {
+    std::fprintf(stderr, "kappa: interrupted before a pass was complete: nothing written\n");
+    return kInterruptedExitCode;  // the outputs' temporaries are removed as they go out of scope
+  }
+  if (result.nonfinite_samples > 0)
+    std::fprintf(stderr, "kappa: warning: %llu samples had non-finite radiance and were dropped from their pixels\n",
+                 static_cast<unsigned long long>(result.nonfinite_samples));
 
   // Every setting that changes the image, from one record, in both the EXR
   // header and the report; then what the run measured.
-  const RenderRecord record = render_record(options, scene, resolution_text(*accel));
+  const RenderRecord record = render_record(options, scene, resolution_text(*accel), result.spp);
   Metadata metadata = {{"Software", std::string("Kappa ") + version_string()},
                        {"kappa:version", std::string(version_string())}};
   for (const auto& [key, value] : record)
@@ -181,8 +249,10 @@ int run_render(const RenderOptions& options) {
                                    {"kappa:rays", double(result.rays)}});
   write_exr(output.temp_path(), film, metadata);
   const nlohmann::ordered_json report =
-      render_report(scene, *accel, FrameFacts{scene.width, scene.height, options.spp, threads, options.seed}, result,
-                    calibration, to_json(record));
+      render_report(scene, *accel,
+                    FrameFacts{scene.width, scene.height, result.spp, threads, options.seed, budget.time_s,
+                               budget.target_relmse},
+                    result, calibration, to_json(record));
 
   if (cell_map_out && result.counters) {
     if (result.counters->classes[0].per_cell()) {
@@ -205,12 +275,16 @@ int run_render(const RenderOptions& options) {
                    accel->build_s());
     }
     std::fprintf(stderr, "kappa: %s %dx%d, %d spp, %s, %d threads: %.2f s, %llu rays, %.3g Mrays/s%s -> %s\n",
-                 scene.name.c_str(), scene.width, scene.height, options.spp, std::string(accel->name()).c_str(), threads,
+                 scene.name.c_str(), scene.width, scene.height, result.spp, std::string(accel->name()).c_str(), threads,
                  result.seconds, static_cast<unsigned long long>(result.rays),
                  result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0,
                  traversal_summary(report["cost"]).c_str(), output.target().c_str());
     std::fflush(stderr);
     std::fputs(stats_table(report).c_str(), stdout);
+  }
+  if (interrupted) {
+    std::fprintf(stderr, "kappa: interrupted: wrote the %d completed passes (%d spp)\n", result.passes, result.spp);
+    return kInterruptedExitCode;
   }
   return 0;
 }

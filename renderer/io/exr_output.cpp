@@ -2,6 +2,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <type_traits>
 
 #include "renderer/util/error.h"
@@ -14,6 +15,8 @@ std::vector<std::string> exr_channel_names(const Film& film) {
   if (!film.normal.empty()) names.insert(names.end(), {"normal.X", "normal.Y", "normal.Z"});
   if (!film.depth.empty()) names.push_back("depth.Z");
   if (!film.cost_cells.empty()) names.insert(names.end(), {"cost.cells", "cost.tests"});
+  if (!film.variance.empty()) names.insert(names.end(), {"variance.R", "variance.G", "variance.B"});
+  if (!film.spp.empty()) names.push_back("spp");
   return names;
 }
 
@@ -33,12 +36,16 @@ void write_exr(const std::filesystem::path& path, const Film& film, const Metada
       *out++ = film.cost_cells[i];
       *out++ = film.cost_tests[i];
     }
+    if (!film.variance.empty())
+      for (int c = 0; c < 3; ++c) *out++ = film.variance[3 * i + std::size_t(c)];
+    if (!film.spp.empty()) *out++ = film.spp[i];
   }
 
   OIIO::ImageSpec spec(film.width, film.height, int(nc), OIIO::TypeDesc::FLOAT);
   spec.channelnames = names;
   spec.alpha_channel = -1;
-  spec.z_channel = film.depth.empty() ? -1 : int(film.cost_cells.empty() ? nc - 1 : nc - 3);
+  const auto z = std::find(names.begin(), names.end(), "depth.Z");
+  spec.z_channel = z == names.end() ? -1 : int(z - names.begin());
   spec.attribute("compression", "zip");
   for (const auto& [key, value] : metadata) {
     std::visit(

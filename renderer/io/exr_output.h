@@ -16,7 +16,8 @@ using MetadataValue = std::variant<std::string, int, float, double>;
 using Metadata = std::vector<std::pair<std::string, MetadataValue>>;
 
 /// Channel names in file order: R, G, B, then albedo.{R,G,B}, normal.{X,Y,Z},
-/// depth.Z, cost.cells and cost.tests for the AOVs present in the film.
+/// depth.Z, cost.cells, cost.tests, variance.{R,G,B} and spp for the AOVs
+/// present in the film.
 std::vector<std::string> exr_channel_names(const Film& film);
 
 /// Writes `film` to `path` directly (callers wanting atomicity pass the

@@ -3,16 +3,28 @@
 // query choice (render_counting.h, tile_loop.h) and the report share them.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
 
 #include "renderer/render/film.h"
+#include "renderer/render/frame_accumulator.h"
+#include "renderer/render/pass_planner.h"
 #include "stats/per_cell_budget.h"
 #include "stats/render_counters.h"
 
 namespace kappa {
+
+/// A progressive render's control (render_command.cpp, tests). Without one
+/// a frame is one pass of RenderSettings::spp.
+struct PassControl {
+  PassPlanner* planner = nullptr;                ///< sizes the passes and stops them
+  const std::atomic<bool>* interrupt = nullptr;  ///< once set, the pass in progress is abandoned
+  /// After each completed pass, with the passes so far (for a progress line).
+  std::function<void(const FrameState&, int)> on_pass;
+};
 
 struct RenderSettings {
   int spp = 16;
@@ -25,6 +37,10 @@ struct RenderSettings {
   /// Per-cell counts for 1 path in this many (1 = every path; 0 = auto, see
   /// auto_cell_sample); per-class totals always count every ray.
   std::uint64_t cell_sample = 0;
+  PassControl* passes = nullptr;  ///< a progressive render's budgets, or one pass of spp
+  /// Test-only: samples for which this returns true read NaN, as a broken
+  /// BSDF's would (tests show that such samples are dropped, not averaged).
+  bool (*test_nonfinite)(std::uint64_t pixel, std::uint64_t sample) = nullptr;
 };
 
 struct RenderResult {
@@ -33,7 +49,14 @@ struct RenderResult {
   std::string stats_note;                          ///< why per-cell statistics were refused, if they were
   std::uint64_t cell_sample = 1;                   ///< per-cell counts kept for 1 path in this many
   std::uint64_t rays = 0;            ///< every accelerator query (closest and any hit)
-  std::uint64_t rejected_samples = 0;  ///< non-finite radiance samples, replaced by 0
+  std::uint64_t abandoned_rays = 0;  ///< of those, cast by a pass abandoned on an interrupt
+  std::uint64_t nonfinite_samples = 0;  ///< non-finite radiance samples, dropped from their pixel
+  int spp = 0;                       ///< the completed passes' samples per pixel (the most any pixel took)
+  int passes = 0;                    ///< completed passes
+  bool interrupted = false;          ///< a pass was abandoned: the film holds the passes before it
+  double relmse_estimate = 0;        ///< FrameAccumulator::relmse_estimate of the film
+  SppSpread spp_spread;              ///< samples per pixel, min, mean and max
+  std::string stop_reason;           ///< the planner's (PassPlanner::stop_reason), "" without one
 };
 
 /// Called after each finished tile with (tiles done, tiles in all); it must be

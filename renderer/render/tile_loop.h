@@ -1,7 +1,8 @@
 // The tile loop of a frame, for one choice of queries: each translation unit
 // that renders instantiates it once, so the plain frame (integrator.cpp) is
 // compiled alone, exactly as in a build without statistics, and the counting
-// frame (render_counting.cpp) beside it.
+// frame (render_counting.cpp) beside it. A frame runs in passes: one of
+// settings.spp, or as many as a PassControl's planner asks for.
 #pragma once
 
 #include <tbb/enumerable_thread_specific.h>
@@ -10,6 +11,7 @@
 #include <atomic>
 
 #include "renderer/render/camera.h"
+#include "renderer/render/frame_accumulator.h"
 #include "renderer/render/path_tracer.h"
 
 namespace kappa {
@@ -26,69 +28,121 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
   const int tiles_x = (film.width + kTileSize - 1) / kTileSize;
   const int tiles_y = (film.height + kTileSize - 1) / kTileSize;
   const std::size_t tile_count = std::size_t(tiles_x) * std::size_t(tiles_y);
+  PassControl* const control = settings.passes;
+  const std::atomic<bool>* const interrupt = control ? control->interrupt : nullptr;
+  const bool adaptive = control && control->planner && control->planner->budget().adaptive;
 
   struct Counters {
-    std::uint64_t rays = 0, rejected = 0;
+    std::uint64_t rays = 0, nonfinite = 0;
   };
   tbb::enumerable_thread_specific<Counters> counters;
-  std::atomic<std::size_t> tiles_done{0};
-  const double inv_spp = 1.0 / double(settings.spp);
+  FrameAccumulator acc(film.pixels(), settings.aov);
+  std::atomic<bool> abandoned{false};
 
-  tbb::parallel_for(std::size_t(0), tile_count, [&](std::size_t tile) {
-    Counters& local = counters.local();
-    auto queries = make_queries();
-    const int x0 = int(tile % std::size_t(tiles_x)) * kTileSize;
-    const int y0 = int(tile / std::size_t(tiles_x)) * kTileSize;
-    for (int y = y0; y < std::min(y0 + kTileSize, film.height); ++y) {
-      for (int x = x0; x < std::min(x0 + kTileSize, film.width); ++x) {
-        const std::size_t pixel = std::size_t(y) * std::size_t(film.width) + std::size_t(x);
-        double sum[3] = {0, 0, 0}, albedo[3] = {0, 0, 0}, normal[3] = {0, 0, 0}, depth = 0;
-        int hits = 0;
-        const QueryWork before = film.cost_cells.empty() ? QueryWork{} : queries.work();
-        for (int s = 0; s < settings.spp; ++s) {
-          Rng rng(settings.seed, pixel, std::uint64_t(s));
-          queries.begin_path(pixel, std::uint64_t(s));
-          const float fx = rng.uniform(), fy = rng.uniform();
-          FirstHit first;
-          Vec3f L = tracer.radiance(camera.generate_ray(float(x) + fx, float(y) + fy), rng, first, queries);
-          if (!is_finite(L)) {
-            ++local.rejected;
-            L = {0, 0, 0};
+  // One pass: samples [first, first + count) of every pixel still sampling,
+  // added to its sums in sample order. A pixel whose pass an interrupt cuts
+  // short keeps its sums as they were.
+  const auto run_pass = [&](std::uint32_t first, std::uint32_t count) {
+    std::atomic<std::size_t> tiles_done{0};
+    tbb::parallel_for(std::size_t(0), tile_count, [&](std::size_t tile) {
+      if (abandoned.load(std::memory_order_relaxed)) return;
+      Counters& local = counters.local();
+      auto queries = make_queries();
+      const int x0 = int(tile % std::size_t(tiles_x)) * kTileSize;
+      const int y0 = int(tile / std::size_t(tiles_x)) * kTileSize;
+      for (int y = y0; y < std::min(y0 + kTileSize, film.height); ++y) {
+        for (int x = x0; x < std::min(x0 + kTileSize, film.width); ++x) {
+          const std::size_t pixel = std::size_t(y) * std::size_t(film.width) + std::size_t(x);
+          if (!acc.active(pixel)) continue;
+          PixelSamples px = acc.samples(pixel);
+          PixelAovSums aovs = acc.has_aovs() ? acc.aov_sums(pixel) : PixelAovSums{};
+          const QueryWork before = film.cost_cells.empty() ? QueryWork{} : queries.work();
+          for (std::uint32_t s = first; s < first + count; ++s) {
+            if (interrupt && interrupt->load(std::memory_order_relaxed)) {
+              abandoned.store(true, std::memory_order_relaxed);
+              local.rays += queries.rays;
+              return;
+            }
+            Rng rng(settings.seed, pixel, std::uint64_t(s));
+            queries.begin_path(pixel, std::uint64_t(s));
+            const float fx = rng.uniform(), fy = rng.uniform();
+            FirstHit hit;
+            Vec3f L = tracer.radiance(camera.generate_ray(float(x) + fx, float(y) + fy), rng, hit, queries);
+            if (settings.test_nonfinite && settings.test_nonfinite(pixel, s)) L.x = NAN;
+            if (is_finite(L)) px.add(L);
+            else ++local.nonfinite;
+            aovs.albedo[0] += hit.albedo.x, aovs.albedo[1] += hit.albedo.y, aovs.albedo[2] += hit.albedo.z;
+            aovs.normal[0] += hit.normal.x, aovs.normal[1] += hit.normal.y, aovs.normal[2] += hit.normal.z;
+            if (std::isfinite(hit.depth)) {
+              aovs.depth += hit.depth;
+              ++aovs.depth_hits;
+            }
           }
-          sum[0] += L.x, sum[1] += L.y, sum[2] += L.z;
-          albedo[0] += first.albedo.x, albedo[1] += first.albedo.y, albedo[2] += first.albedo.z;
-          normal[0] += first.normal.x, normal[1] += first.normal.y, normal[2] += first.normal.z;
-          if (std::isfinite(first.depth)) {
-            depth += first.depth;
-            ++hits;
+          px.drawn = first + count;
+          acc.samples(pixel) = px;
+          if (!film.cost_cells.empty()) {
+            const QueryWork after = queries.work();
+            aovs.cells += double(after.cells - before.cells);
+            aovs.tests += double(after.tests - before.tests);
           }
-        }
-        for (int c = 0; c < 3; ++c) film.rgb[3 * pixel + std::size_t(c)] = float(sum[c] * inv_spp);
-        if (!film.albedo.empty())
-          for (int c = 0; c < 3; ++c) film.albedo[3 * pixel + std::size_t(c)] = float(albedo[c] * inv_spp);
-        if (!film.normal.empty()) {
-          const double len = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
-          for (int c = 0; c < 3; ++c)
-            film.normal[3 * pixel + std::size_t(c)] = len > 0 ? float(normal[c] / len) : 0.0f;
-        }
-        if (!film.depth.empty()) film.depth[pixel] = hits > 0 ? float(depth / hits) : INFINITY;
-        if (!film.cost_cells.empty()) {
-          const QueryWork after = queries.work();
-          film.cost_cells[pixel] = float(after.cells - before.cells);
-          film.cost_tests[pixel] = float(after.tests - before.tests);
+          if (acc.has_aovs()) acc.aov_sums(pixel) = aovs;
         }
       }
-    }
-    local.rays += queries.rays;
-    const std::size_t done = tiles_done.fetch_add(1, std::memory_order_relaxed) + 1;
-    if (progress) progress(done, tile_count);
-  });
+      local.rays += queries.rays;
+      const std::size_t done = tiles_done.fetch_add(1, std::memory_order_relaxed) + 1;
+      if (progress) progress(done, tile_count);
+    });
+  };
+  const auto totals = [&] {
+    Counters sum;
+    counters.combine_each([&](const Counters& c) {
+      sum.rays += c.rays;
+      sum.nonfinite += c.nonfinite;
+    });
+    return sum;
+  };
 
   RenderResult result;
-  counters.combine_each([&](const Counters& c) {
-    result.rays += c.rays;
-    result.rejected_samples += c.rejected;
-  });
+  Counters completed;  // as of the last completed pass
+  FrameState state{0, acc.active_pixels(), 0.0};
+  for (;;) {
+    const int count = control && control->planner ? control->planner->next_pass(state)
+                                                   : (result.passes == 0 ? settings.spp : 0);
+    if (count <= 0) break;
+    run_pass(std::uint32_t(state.spp), std::uint32_t(count));
+    if (abandoned.load()) {
+      result.interrupted = true;
+      break;
+    }
+    ++result.passes;
+    state.spp += count;
+    completed = totals();
+    if (control) {
+      // The film of every completed pass, ready to be written if the next
+      // is interrupted; then what the planner decides the next pass from.
+      acc.resolve(film);
+      if (adaptive && state.spp >= control->planner->budget().adaptive_min_spp)
+        acc.retire_converged(control->planner->budget().target_relmse,
+                             std::uint32_t(control->planner->budget().adaptive_min_spp));
+      state.active_pixels = acc.active_pixels();
+      state.relmse_estimate = acc.relmse_estimate();
+      result.spp_spread = acc.spp_spread();
+      if (control->on_pass) control->on_pass(state, result.passes);
+    }
+  }
+  if (!control) {
+    acc.resolve(film);
+    state.relmse_estimate = acc.relmse_estimate();
+    result.spp_spread = acc.spp_spread();
+  }
+
+  const Counters all = totals();
+  result.rays = all.rays;
+  result.abandoned_rays = all.rays - completed.rays;
+  result.nonfinite_samples = completed.nonfinite;
+  result.spp = state.spp;
+  result.relmse_estimate = state.relmse_estimate;
+  if (control && control->planner) result.stop_reason = result.interrupted ? "interrupted" : control->planner->stop_reason();
   return result;
 }
 

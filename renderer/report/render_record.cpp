@@ -19,15 +19,15 @@ std::string input_hash(const Scene& scene) {
   return hex;
 }
 
-RenderRecord render_record(const RenderOptions& options, const Scene& scene, const std::string& grid_res) {
-  return {
+RenderRecord render_record(const RenderOptions& options, const Scene& scene, const std::string& grid_res, int spp) {
+  RenderRecord record = {
       {"scene", scene.source.string()},
       {"input_hash", input_hash(scene)},
       {"accel", options.accel},
       {"grid_res", grid_res},
       {"width", scene.width},
       {"height", scene.height},
-      {"spp", options.spp},
+      {"spp", spp},
       {"max_depth", options.max_depth},
       {"rr_depth", options.rr_depth},
       {"russian_roulette", !options.no_rr},
@@ -36,6 +36,13 @@ RenderRecord render_record(const RenderOptions& options, const Scene& scene, con
       {"stats", options.stats},
       {"cell_sample", options.cell_sample},
   };
+  if (!options.time_budget.empty()) record.emplace_back("time_budget", options.time_budget);
+  if (!options.target_relmse.empty()) record.emplace_back("target_relmse", std::stod(options.target_relmse));
+  if (options.adaptive) {
+    record.emplace_back("adaptive", true);
+    record.emplace_back("adaptive_min_spp", options.adaptive_min_spp);
+  }
+  return record;
 }
 
 nlohmann::ordered_json to_json(const RenderRecord& record) {

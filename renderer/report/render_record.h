@@ -25,7 +25,9 @@ using RenderRecord = std::vector<std::pair<std::string, SettingValue>>;
 /// of the input files' bytes (`input_hash`, 16 hex digits).
 /// `grid_res` is the resolution the grid was built at ("64x32x16", which
 /// --grid-res takes back), or "none" for an accelerator without cells.
-RenderRecord render_record(const RenderOptions& options, const Scene& scene, const std::string& grid_res);
+/// `spp` is the samples per pixel the render took (a budget decides them),
+/// and the budgets appear when they were set.
+RenderRecord render_record(const RenderOptions& options, const Scene& scene, const std::string& grid_res, int spp);
 
 /// FNV-1a 64 over every input file's bytes, in order, as 16 hex digits.
 std::string input_hash(const Scene& scene);

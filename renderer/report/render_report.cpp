@@ -41,6 +41,17 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
                  {"time_s", result.seconds},
                  {"rays", result.rays},
                  {"mrays_per_s", result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0},
+                 {"passes", result.passes},
+                 {"time_budget_s", frame.time_budget_s > 0 ? nlohmann::ordered_json(frame.time_budget_s) : nullptr},
+                 {"target_relmse", frame.target_relmse > 0 ? nlohmann::ordered_json(frame.target_relmse) : nullptr},
+                 {"stop_reason", result.stop_reason.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(result.stop_reason)},
+                 {"relmse_estimate", result.relmse_estimate},
+                 {"spp_min", result.spp_spread.min},
+                 {"spp_mean", result.spp_spread.mean},
+                 {"spp_max", result.spp_spread.max},
+                 {"nonfinite_samples", result.nonfinite_samples},
+                 {"interrupted", result.interrupted},
+                 {"abandoned_rays", result.abandoned_rays},
                  {"settings", settings}};
   if (nlohmann::ordered_json section = accel_section(accel, scene.triangles); !section.is_null())
     j[std::string(accel.name())] = std::move(section);

@@ -12,8 +12,10 @@
 namespace kappa {
 
 struct FrameFacts {
-  int width = 0, height = 0, spp = 0, threads = 0;
+  int width = 0, height = 0, spp = 0, threads = 0;  ///< spp: what the render took
   std::uint64_t seed = 0;
+  double time_budget_s = 0;  ///< 0: none
+  double target_relmse = 0;  ///< 0: none
 };
 
 /// The report; `cost` (cost_section.h) when counters ran: the measured

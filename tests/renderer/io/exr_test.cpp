@@ -58,6 +58,45 @@ TEST(Exr, RoundTripKeepsPixelsChannelsAndMetadata) {
   in->close();
 }
 
+TEST(Exr, VarianceAndSppChannelsFollowTheOthersAndDepthStaysTheZChannel) {
+  test::TempDir dir;
+  AovSelection aov;
+  aov.depth = aov.cost = aov.variance = aov.spp = true;
+  Film film(2, 2, aov);
+  for (std::size_t i = 0; i < film.pixels(); ++i) {
+    film.depth[i] = 1.5f + float(i);
+    film.cost_cells[i] = 10.0f + float(i);
+    film.cost_tests[i] = 20.0f + float(i);
+    film.spp[i] = 16.0f * float(i + 1);
+    for (int c = 0; c < 3; ++c) film.variance[3 * i + std::size_t(c)] = 0.125f * float(c + 1) + float(i);
+  }
+  EXPECT_EQ(exr_channel_names(film),
+            (std::vector<std::string>{"R", "G", "B", "depth.Z", "cost.cells", "cost.tests", "variance.R", "variance.G",
+                                      "variance.B", "spp"}));
+  const auto path = dir / "aov.exr";
+  write_exr(path, film, {});
+  auto in = OIIO::ImageInput::open(path.string());
+  ASSERT_TRUE(in) << OIIO::geterror();
+  const OIIO::ImageSpec& spec = in->spec();
+  ASSERT_EQ(spec.nchannels, 10);
+  ASSERT_GE(spec.z_channel, 0);
+  EXPECT_EQ(spec.channelnames[std::size_t(spec.z_channel)], "depth.Z");
+  std::vector<float> pixels(std::size_t(4 * spec.nchannels));
+  ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
+  const auto value = [&](std::size_t pixel, const std::string& name) {
+    for (int c = 0; c < spec.nchannels; ++c)
+      if (spec.channelnames[std::size_t(c)] == name) return pixels[pixel * std::size_t(spec.nchannels) + std::size_t(c)];
+    ADD_FAILURE() << "missing channel " << name;
+    return -1.0f;
+  };
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(value(i, "spp"), film.spp[i]);
+    EXPECT_EQ(value(i, "variance.G"), film.variance[3 * i + 1]);
+    EXPECT_EQ(value(i, "depth.Z"), film.depth[i]);
+    EXPECT_EQ(value(i, "cost.tests"), film.cost_tests[i]);
+  }
+}
+
 TEST(Exr, AtomicOutputLeavesNothingBehindWithoutCommit) {
   test::TempDir dir;
   const auto target = dir / "out.exr";

@@ -103,6 +103,10 @@ TEST(ReportKeys, EveryDocumentedKeyIsInTheReports) {
   const nlohmann::json render = report_of({"render", scene, "--spp", "2", "--width", "32", "--height", "32", "--out",
                                            (tmp / "x.exr").string(), "--calibration", (tmp / "cal.json").string()});
   ASSERT_TRUE(render.at("cost").is_object());
+  // A budgeted render: the settings of its budgets.
+  const nlohmann::json budgeted =
+      report_of({"render", scene, "--spp", "16", "--width", "16", "--height", "16", "--time-budget", "1h",
+                 "--target-relmse", "0.5", "--adaptive", "--out", (tmp / "b.exr").string()});
   const nlohmann::json lines = report_of({"cast", scene, "--rays", "lines", "--n", "2000"});
   const nlohmann::json segments = report_of({"cast", scene, "--rays", "segments", "--n", "2000"});
   // Per-thread counters of 2 threads over 64^3 cells do not fit: one shared sampled set.
@@ -110,7 +114,7 @@ TEST(ReportKeys, EveryDocumentedKeyIsInTheReports) {
                                             "--threads", "2", "--grid-max-bytes", "9000000"});
   ASSERT_TRUE(sampled.contains("stats_note"));
   std::set<std::string> seen;
-  for (const auto* j : {&render, &lines, &segments, &sampled}) collect(*j, seen);
+  for (const auto* j : {&render, &budgeted, &lines, &segments, &sampled}) collect(*j, seen);
   for (const auto& key : documented.all) EXPECT_TRUE(seen.count(key)) << key << " is documented but in no report";
   // Top-level keys: in a render's report and in a cast's (render is null in a
   // cast, cast absent from a render, stats_note only when there is a note).
@@ -122,6 +126,12 @@ TEST(ReportKeys, EveryDocumentedKeyIsInTheReports) {
       EXPECT_TRUE(lines.contains(key)) << key << " (cast)";
     }
   }
+  // The version the README documents is the one the reports carry.
+  std::ifstream readme(test::source_dir() / "stats" / "README.md");
+  const std::string text((std::istreambuf_iterator<char>(readme)), std::istreambuf_iterator<char>());
+  std::smatch version;
+  ASSERT_TRUE(std::regex_search(text, version, std::regex(R"(\nschema_version +([0-9]+))")));
+  for (const auto* j : {&render, &lines}) EXPECT_EQ(j->at("schema_version").get<int>(), std::stoi(version[1].str()));
   // And nothing undocumented at the top.
   for (const auto* j : {&render, &lines, &sampled})
     for (const auto& [key, value] : j->items()) EXPECT_TRUE(documented.top.count(key)) << key << " is not documented";

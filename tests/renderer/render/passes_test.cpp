@@ -1,0 +1,224 @@
+// Progressive rendering: passes add samples to each pixel in sample order, so
+// any passes of a total are bitwise the one-pass image of that total; the
+// budgets size and stop the passes (a fake clock stands in for time); a
+// non-finite sample is dropped, never averaged in; --adaptive is the same
+// image for any thread count.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "accel/thread_limit.h"
+#include "renderer/render/pass_planner.h"
+#include "renderer/render/pixel_samples.h"
+#include "renderer/render/render_helpers.h"
+#include "renderer/scene/scene_loader.h"
+#include "test_util.h"
+
+namespace kappa {
+namespace {
+
+bool bitwise_equal(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+Scene cornell(int size) {
+  Warnings warnings;
+  Scene scene = load_scene(test::assets_dir() / "cornell-box" / "scene.json", warnings);
+  scene.width = scene.height = size;
+  return scene;
+}
+
+/// A clock the test advances: `per_sample` seconds for every sample per
+/// pixel a pass took, whatever the machine does.
+struct FakeClock {
+  double now = 0;
+  double per_sample = 0.01;
+  int spp_seen = 0;
+  void advance_to(int spp) {
+    now += per_sample * (spp - spp_seen);
+    spp_seen = spp;
+  }
+};
+
+struct Rendered {
+  Film film;
+  RenderResult result;
+  std::vector<int> pass_spp;  ///< the total after each pass
+};
+
+Rendered render_budgeted(const Scene& scene, const Budget& budget, RenderSettings settings, FakeClock& clock) {
+  PassPlanner planner(budget, [&clock] { return clock.now; });
+  Rendered out{Film(scene.width, scene.height, settings.aov), {}, {}};
+  PassControl control{&planner, nullptr, [&](const FrameState& state, int) {
+                        clock.advance_to(state.spp);
+                        out.pass_spp.push_back(state.spp);
+                      }};
+  settings.passes = &control;
+  const auto accel = make_accelerator("grid", scene.triangles);
+  out.result = render(scene, *accel, settings, out.film);
+  return out;
+}
+
+TEST(Passes, AStoppedRenderIsBitwiseTheSppImageOfItsTotal) {
+  const Scene scene = cornell(24);
+  RenderSettings settings;
+  settings.seed = 3;
+  settings.aov.variance = settings.aov.spp = true;
+  settings.aov.albedo = settings.aov.depth = true;
+  Budget budget;
+  budget.time_s = 1.0;  // 0.01 s a sample: about 100 samples, in passes of 1, 5, 5, ...
+  FakeClock clock;
+  const Rendered budgeted = render_budgeted(scene, budget, settings, clock);
+  ASSERT_GE(budgeted.result.passes, 10);
+  EXPECT_EQ(budgeted.result.spp, budgeted.pass_spp.back());
+  EXPECT_EQ(budgeted.pass_spp.front(), 1) << "a time budget starts with one sample";
+  EXPECT_EQ(budgeted.result.stop_reason, "time-budget");
+
+  settings.spp = budgeted.result.spp;
+  const Film one_pass = test::render_scene(scene, settings, "grid");
+  EXPECT_TRUE(bitwise_equal(budgeted.film.rgb, one_pass.rgb)) << budgeted.result.spp << " spp";
+  EXPECT_TRUE(bitwise_equal(budgeted.film.variance, one_pass.variance));
+  EXPECT_TRUE(bitwise_equal(budgeted.film.albedo, one_pass.albedo));
+  EXPECT_TRUE(bitwise_equal(budgeted.film.depth, one_pass.depth));
+  EXPECT_TRUE(bitwise_equal(budgeted.film.spp, one_pass.spp));
+  EXPECT_EQ(budgeted.film.spp[0], float(budgeted.result.spp));
+  // And the total matters: one sample fewer is another image.
+  settings.spp -= 1;
+  EXPECT_FALSE(bitwise_equal(budgeted.film.rgb, test::render_scene(scene, settings, "grid").rgb));
+}
+
+TEST(Passes, TheTimeBudgetEndsWithinItsTenPerCentAndPassesTakeAtMostFivePerCent) {
+  const Scene scene = cornell(16);
+  for (const double per_sample : {0.01, 0.0031, 0.047}) {
+    Budget budget;
+    budget.time_s = 1.0;
+    FakeClock clock;
+    clock.per_sample = per_sample;
+    const Rendered r = render_budgeted(scene, budget, RenderSettings{}, clock);
+    EXPECT_LE(clock.now, budget.time_s * (1 + 1e-12)) << per_sample;
+    EXPECT_GE(clock.now, 0.9 * budget.time_s) << per_sample;
+    for (std::size_t i = 1; i < r.pass_spp.size(); ++i)
+      EXPECT_LE((r.pass_spp[i] - r.pass_spp[i - 1]) * per_sample, 0.05 * budget.time_s * (1 + 1e-12)) << per_sample;
+  }
+  // --spp caps the passes under a budget.
+  Budget capped;
+  capped.time_s = 1.0;
+  capped.spp_cap = 17;
+  FakeClock clock;
+  const Rendered r = render_budgeted(scene, capped, RenderSettings{}, clock);
+  EXPECT_EQ(r.result.spp, 17);
+  EXPECT_EQ(r.result.stop_reason, "spp");
+}
+
+TEST(PassPlanner, ATargetIsCheckedFromEightSamplesAndStopsBelowIt) {
+  Budget budget;
+  budget.target_relmse = 0.25;  // figures exact in binary, so the test sees no rounding
+  PassPlanner planner(budget, [] { return 0.0; });
+  EXPECT_EQ(planner.next_pass({0, 100, 0.0}), 8) << "the first pass reaches the first check";
+  // Below the target from 8 spp on: stop.
+  EXPECT_EQ(planner.next_pass({8, 100, 0.2}), 0);
+  EXPECT_EQ(planner.stop_reason(), "target-relmse");
+  // Above it: the samples the 1/n fall asks for, at most doubling.
+  PassPlanner again(budget, [] { return 0.0; });
+  again.next_pass({0, 100, 0.0});
+  EXPECT_EQ(again.next_pass({8, 100, 0.3125}), 2);  // 8 x 0.3125 / 0.25 = 10
+  EXPECT_EQ(again.next_pass({10, 100, 2.0}), 10);   // 80 asked for: doubling at most
+  EXPECT_EQ(again.next_pass({20, 0, 0.5}), 0);       // every pixel retired
+  EXPECT_EQ(again.stop_reason(), "converged");
+  // Before 8 spp a low estimate does not stop a render (a time budget's first passes).
+  Budget both = budget;
+  both.time_s = 100;
+  double t = 0;
+  PassPlanner timed(both, [&t] { return t; });
+  EXPECT_EQ(timed.next_pass({0, 10, 0.0}), 1);
+  t = 0.01;
+  EXPECT_EQ(timed.next_pass({1, 10, 0.0}), 7);
+}
+
+TEST(Passes, NonFiniteSamplesAreDroppedFromTheirPixelNotAveragedIn) {
+  const Scene scene = cornell(16);
+  RenderSettings settings;
+  settings.spp = 4;
+  const Film four = test::render_scene(scene, settings, "grid");
+  // Samples 4..7 of every pixel read NaN: the 8-spp image is the 4-spp one.
+  settings.spp = 8;
+  settings.test_nonfinite = [](std::uint64_t, std::uint64_t sample) { return sample >= 4; };
+  const auto accel = make_accelerator("grid", scene.triangles);
+  Film film(scene.width, scene.height, settings.aov);
+  const RenderResult r = render(scene, *accel, settings, film);
+  EXPECT_EQ(r.nonfinite_samples, 4u * film.pixels());
+  EXPECT_TRUE(bitwise_equal(film.rgb, four.rgb));
+  for (float v : film.rgb) ASSERT_TRUE(std::isfinite(v));
+  // A pixel whose every sample is non-finite reads 0, not NaN.
+  settings.test_nonfinite = [](std::uint64_t pixel, std::uint64_t) { return pixel == 5; };
+  const RenderResult all = render(scene, *accel, settings, film);
+  EXPECT_EQ(all.nonfinite_samples, 8u);
+  EXPECT_EQ(film.rgb[15], 0.0f);
+  EXPECT_EQ(film.rgb[16], 0.0f);
+  EXPECT_EQ(film.rgb[17], 0.0f);
+}
+
+TEST(Passes, AdaptiveSamplingIsTheSameImageForAnyThreadCount) {
+  const Scene scene = cornell(32);
+  RenderSettings settings;
+  settings.aov.spp = settings.aov.variance = true;
+  Budget budget;
+  budget.target_relmse = 0.004;
+  budget.adaptive = true;
+  budget.adaptive_min_spp = 16;  // past the first pass (8): retiring waits for it
+  budget.spp_cap = 256;
+  const auto on = [&](int threads) {
+    const ThreadLimit limit(threads);
+    FakeClock clock;
+    return render_budgeted(scene, budget, settings, clock);
+  };
+  const Rendered one = on(1), two = on(2);
+  EXPECT_TRUE(bitwise_equal(one.film.rgb, two.film.rgb));
+  EXPECT_TRUE(bitwise_equal(one.film.spp, two.film.spp));
+  EXPECT_EQ(one.pass_spp, two.pass_spp);
+  // Pixels stopped at different counts, none before the minimum, and those
+  // that stopped early are below the target on their own.
+  const SppSpread s = one.result.spp_spread;
+  EXPECT_GE(s.min, 16u);
+  EXPECT_LT(s.min, s.max);
+  EXPECT_GT(s.mean, double(s.min));
+  EXPECT_LT(s.mean, double(s.max));
+  std::size_t early = 0;
+  for (std::size_t i = 0; i < one.film.pixels(); ++i) {
+    if (one.film.spp[i] >= float(s.max)) continue;
+    ++early;
+    double e = 0;
+    for (int c = 0; c < 3; ++c) {
+      const double x = one.film.rgb[3 * i + std::size_t(c)];
+      e += one.film.variance[3 * i + std::size_t(c)] / (x * x + kRelmseEpsilon);
+    }
+    EXPECT_LT(e / 3, budget.target_relmse * 1.001) << "pixel " << i;
+  }
+  EXPECT_GT(early, 0u);
+}
+
+TEST(PixelSamples, WelfordMatchesTheTwoPassVarianceOfTheMean) {
+  PixelSamples p;
+  const float xs[] = {0.5f, 2.0f, 1.25f, 0.0f, 7.5f, 3.0f};
+  for (float x : xs) p.add({x, 2 * x, 1.0f});
+  const double n = 6;
+  double mean = 0;
+  for (float x : xs) mean += x;
+  mean /= n;
+  double ss = 0;
+  for (float x : xs) ss += (x - mean) * (x - mean);
+  EXPECT_NEAR(p.value(0), mean, 1e-15);
+  EXPECT_NEAR(p.variance_of_mean(0), ss / (n - 1) / n, 1e-14);
+  EXPECT_NEAR(p.variance_of_mean(1), 4 * ss / (n - 1) / n, 1e-13);
+  EXPECT_EQ(p.variance_of_mean(2), 0.0);  // a constant channel
+  const double expected = (ss / (n - 1) / n / (mean * mean + 0.01) + 4 * ss / (n - 1) / n / (4 * mean * mean + 0.01)) / 3;
+  EXPECT_NEAR(p.relmse_estimate(), expected, 1e-14);
+  EXPECT_EQ(p.finite, 6u);
+  PixelSamples one;
+  one.add({1, 1, 1});
+  EXPECT_EQ(one.variance_of_mean(0), 0.0) << "one sample: unknown, not infinite";
+}
+
+}  // namespace
+}  // namespace kappa
