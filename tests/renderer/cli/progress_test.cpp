@@ -84,6 +84,15 @@ TEST(Progress, ATerminalSeesEveryPhaseOfLoadingBuildingAndRendering) {
   EXPECT_TRUE(contains(run.terminal.substr(last_build, summary - last_build), "\r\033[K"));
 }
 
+TEST(Progress, ABudgetedRenderShowsItsSamplesAndEstimate) {
+  test::TempDir dir;
+  const TerminalRun run = run_on_terminal({"render", cornell(), "--width", "32", "--height", "32", "--target-relmse",
+                                           "0.01", "--out", (dir / "c.exr").string()});
+  ASSERT_EQ(run.exit_code, 0) << run.terminal;
+  EXPECT_TRUE(contains(run.terminal, "rendering, pass ")) << run.terminal;
+  EXPECT_TRUE(contains(run.terminal, " spp, relMSE 0.00")) << run.terminal;
+}
+
 TEST(Progress, TheBuildOfEveryAcceleratorWithOneIsShown) {
   const TerminalRun run = run_on_terminal({"cast", cornell(), "--accel", "embree", "--n", "100"});
   ASSERT_EQ(run.exit_code, 0) << run.terminal;
