@@ -23,6 +23,11 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   render.add_option("--spp", o.spp, "samples per pixel (with a budget: the most, if given)")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
+  render.add_option("--sampler", o.sampler,
+                    "where samples fall: independent (PCG32), stratified (jittered strata; needs --spp, so no budget) "
+                    "or sobol (Owen-scrambled Sobol (0,2)-sequence, shuffled per dimension pair)")
+      ->check(CLI::IsMember({"independent", "stratified", "sobol"}))
+      ->capture_default_str();
   render.add_option("--time-budget", o.time_budget,
                     "render in passes until this time is spent: a number and a unit, 500ms, 30s, 2m, 1h");
   render.add_option("--target-relmse", o.target_relmse,
@@ -164,6 +169,8 @@ std::optional<int> parse_command_line(int argc, char** argv, Command& command) {
   if (render->parsed()) {
     render_options.spp_given = render->count("--spp") > 0;
     render_options.adaptive_min_spp_given = render->count("--adaptive-min-spp") > 0;
+    render_options.time_budget_given = render->count("--time-budget") > 0;
+    render_options.target_relmse_given = render->count("--target-relmse") > 0;
     command = std::move(render_options);
   }
   else if (bench->parsed()) command = std::move(bench_options);

@@ -17,8 +17,11 @@ struct RenderOptions {
   AccelOptions build;           ///< --grid-res, --grid-density, --grid-max-bytes
   int spp = 64;                 ///< samples per pixel (with a budget: the cap, when given)
   bool spp_given = false;       ///< --spp was on the command line
-  std::string time_budget;      ///< --time-budget: "500ms", "30s", "2m", "1h" ("" = none)
-  std::string target_relmse;    ///< --target-relmse, a number above 0 ("" = none)
+  std::string sampler = "independent";  ///< --sampler: independent | stratified | sobol
+  std::string time_budget;      ///< --time-budget: "500ms", "30s", "2m", "1h"
+  bool time_budget_given = false;
+  std::string target_relmse;    ///< --target-relmse, a number above 0
+  bool target_relmse_given = false;
   bool adaptive = false;        ///< --adaptive: converged pixels stop sampling
   int adaptive_min_spp = 16;    ///< --adaptive-min-spp
   bool adaptive_min_spp_given = false;

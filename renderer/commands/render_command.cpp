@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <chrono>
 #include <optional>
 #include <cstdio>
@@ -23,6 +25,7 @@
 #include "renderer/io/exr_output.h"
 #include "renderer/io/output_guard.h"
 #include "renderer/render/integrator.h"
+#include "renderer/render/sampler_kind.h"
 #include "renderer/report/render_record.h"
 #include "renderer/report/render_report.h"
 #include "renderer/report/stats_table.h"
@@ -63,8 +66,8 @@ std::filesystem::path output_path(const RenderOptions& options, const Scene& sce
 /// The budgets asked for (pass_planner.h), refused before anything is loaded.
 Budget budget_of(const RenderOptions& options) {
   Budget budget;
-  if (!options.time_budget.empty()) budget.time_s = parse_duration(options.time_budget, "--time-budget");
-  if (!options.target_relmse.empty()) {
+  if (options.time_budget_given) budget.time_s = parse_duration(options.time_budget, "--time-budget");
+  if (options.target_relmse_given) {
     const std::string& text = options.target_relmse;
     double e = 0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), e);
@@ -79,6 +82,9 @@ Budget budget_of(const RenderOptions& options) {
   budget.adaptive = options.adaptive;
   budget.adaptive_min_spp = options.adaptive_min_spp;
   if (options.spp_given) budget.spp_cap = options.spp;
+  if (budget.any() && needs_total(parse_sampler(options.sampler)))
+    throw InputError("--sampler " + options.sampler +
+                     ": needs the samples per pixel in advance, which a budget decides as it goes (use independent or sobol)");
   return budget;
 }
 
@@ -189,6 +195,7 @@ int run_render(const RenderOptions& options) {
   settings.max_depth = options.max_depth;
   settings.rr_depth = options.no_rr ? -1 : options.rr_depth;
   settings.seed = options.seed;
+  settings.sampler = parse_sampler(options.sampler);
   settings.aov = aov;
   settings.stats = options.stats == "on";
   settings.stats_max_bytes = options.build.max_bytes();
@@ -200,6 +207,9 @@ int run_render(const RenderOptions& options) {
   begin_phase(bar.task(), "rendering", 0);
   RenderResult result;
   bool interrupted = false;
+  // Alive until the outputs are committed: a first Ctrl-C while a finished
+  // budgeted render writes its outputs lets them be written too.
+  std::optional<InterruptGuard> guard;
   if (budget.any()) {
     // Passes until a budget is spent; Ctrl-C abandons the pass in progress
     // and keeps the completed ones (interrupt.h). The progress line shows
@@ -208,8 +218,16 @@ int run_render(const RenderOptions& options) {
     PassPlanner planner(budget, [] {
       return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
     });
-    const InterruptGuard guard;
-    PassControl control{&planner, &guard.flag(), [&](const FrameState& state, int passes) {
+    guard.emplace();
+    // Test hook: tests that interrupt a render read there how many passes
+    // are complete, instead of guessing from the time.
+    const char* passes_file = std::getenv("KAPPA_TEST_PASSES_FILE");
+    const auto note_passes = [passes_file](int passes) {
+      if (passes_file) std::ofstream(passes_file) << passes << "\n";
+    };
+    note_passes(0);
+    PassControl control{&planner, &guard->flag(), [&](const FrameState& state, int passes) {
+                          note_passes(passes);
                           if (TaskProgress* task = bar.task()) task->rename(pass_text(state, passes, budget));
                           double share = budget.time_s > 0 ? planner.elapsed() / budget.time_s : 0;
                           if (budget.target_relmse > 0 && state.spp >= kFirstRelmseCheckSpp && state.relmse_estimate > 0)
@@ -218,7 +236,13 @@ int run_render(const RenderOptions& options) {
                         }};
     settings.passes = &control;
     result = render(scene, *accel, settings, film);
-    interrupted = result.interrupted || guard.interrupted();
+    interrupted = result.interrupted || guard->interrupted();
+    if (interrupted && !result.interrupted) {
+      // Ctrl-C after the last pass's last sample: its passes are complete,
+      // but the run was interrupted, and the report says so.
+      result.interrupted = true;
+      result.stop_reason = "interrupted";
+    }
   } else {
     result = render(scene, *accel, settings, film, [&bar](std::size_t done, std::size_t total) { bar.update(done, total); });
   }
@@ -233,7 +257,7 @@ int run_render(const RenderOptions& options) {
 
   // Every setting that changes the image, from one record, in both the EXR
   // header and the report; then what the run measured.
-  const RenderRecord record = render_record(options, scene, resolution_text(*accel), result.spp);
+  const RenderRecord record = render_record(options, scene, resolution_text(*accel), result.spp, budget);
   Metadata metadata = {{"Software", std::string("Kappa ") + version_string()},
                        {"kappa:version", std::string(version_string())}};
   for (const auto& [key, value] : record)
@@ -261,8 +285,15 @@ int run_render(const RenderOptions& options) {
       std::fprintf(stderr, "kappa: warning: --cell-map skipped: per-cell statistics were refused for this frame\n");
     }
   }
-  output.commit();
-  if (report_out) write_and_commit(*report_out, report.dump(2) + "\n");
+  {
+    // The image and the report land together: a signal during the renames
+    // waits until both are done (and then ends the process as it would have).
+    const std::string report_text = report.dump(2) + "\n";
+    if (report_out) write_temporary(*report_out, report_text);
+    const SignalsHeld held;
+    output.commit();
+    if (report_out) report_out->commit();
+  }
   if (!result.stats_note.empty()) std::fprintf(stderr, "kappa: warning: %s\n", result.stats_note.c_str());
 
   if (!options.quiet) {

@@ -26,7 +26,14 @@ std::array<std::atomic<bool>, kSlots> g_claimed{};  ///< slot taken
 std::array<std::atomic<bool>, kSlots> g_ready{};    ///< path written
 std::once_flag g_handlers_installed;
 
+std::atomic<bool> g_holding{false};
+std::atomic<int> g_pending{0};  ///< a signal that came while held
+
 extern "C" void remove_temporaries_and_exit(int sig) {
+  if (g_holding.load()) {
+    g_pending.store(sig);
+    return;
+  }
   for (int i = 0; i < kSlots; ++i)
     if (g_ready[i].load()) ::unlink(g_paths[i]);
   ::signal(sig, SIG_DFL);
@@ -122,7 +129,19 @@ std::unique_ptr<AtomicOutput> optional_output(const std::filesystem::path& targe
   return target.empty() ? nullptr : std::make_unique<AtomicOutput>(target, kind);
 }
 
+SignalsHeld::SignalsHeld() { g_holding.store(true); }
+
+SignalsHeld::~SignalsHeld() {
+  g_holding.store(false);
+  if (const int sig = g_pending.exchange(0)) remove_temporaries_and_exit(sig);
+}
+
 void write_and_commit(AtomicOutput& output, const std::string& text) {
+  write_temporary(output, text);
+  output.commit();
+}
+
+void write_temporary(AtomicOutput& output, const std::string& text) {
   {
     std::ofstream out(output.temp_path(), std::ios::binary);
     out << text;
@@ -134,7 +153,6 @@ void write_and_commit(AtomicOutput& output, const std::string& text) {
       fail(output.target(), 0, "cannot write");
     }
   }
-  output.commit();
 }
 
 void AtomicOutput::commit() {

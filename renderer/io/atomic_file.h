@@ -46,5 +46,19 @@ std::unique_ptr<AtomicOutput> optional_output(const std::filesystem::path& targe
 
 /// Writes `text` to the output's temporary and commits it (throws InputError).
 void write_and_commit(AtomicOutput& output, const std::string& text);
+/// Writes `text` to the output's temporary only (commit it later).
+void write_temporary(AtomicOutput& output, const std::string& text);
+
+/// While one lives, SIGINT, SIGTERM and SIGHUP wait: outputs committed
+/// together (an image and its report) land together. A signal that came
+/// meanwhile takes effect when it ends, as it would have (temporaries still
+/// there are removed, and the process ends by the signal).
+class SignalsHeld {
+ public:
+  SignalsHeld();
+  ~SignalsHeld();
+  SignalsHeld(const SignalsHeld&) = delete;
+  SignalsHeld& operator=(const SignalsHeld&) = delete;
+};
 
 }  // namespace kappa

@@ -12,6 +12,7 @@
 #include "renderer/render/film.h"
 #include "renderer/render/frame_accumulator.h"
 #include "renderer/render/pass_planner.h"
+#include "renderer/render/sampler_kind.h"
 #include "stats/per_cell_budget.h"
 #include "stats/render_counters.h"
 
@@ -31,6 +32,7 @@ struct RenderSettings {
   int max_depth = 32;       ///< bounces after the camera ray; 1 = direct lighting only
   int rr_depth = 3;         ///< Russian roulette from this many bounces on; < 0 disables it
   std::uint64_t seed = 0;
+  SamplerKind sampler = SamplerKind::independent;  ///< samplers.h; stratified needs spp, so no budget
   AovSelection aov;
   bool stats = false;       ///< per-class counters (grid only), chosen once per frame
   std::uint64_t stats_max_bytes = std::uint64_t(1) << 32;  ///< budget for per-cell counters plus the grid

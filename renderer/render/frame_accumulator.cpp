@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace kappa {
 
@@ -13,19 +14,49 @@ FrameAccumulator::FrameAccumulator(std::size_t pixels, const AovSelection& aov)
   if (aov.albedo || aov.normal || aov.depth || aov.cost) m_aovs.resize(pixels);
 }
 
+namespace {
+
+/// Runs f(first, last) over fixed blocks of pixels in parallel and returns
+/// their results in block order: a sum over them is the same for any thread
+/// count.
+template <typename T, typename F>
+std::vector<T> per_block(std::size_t pixels, F&& f) {
+  const std::size_t blocks = (pixels + kBlock - 1) / kBlock;
+  std::vector<T> out(blocks);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    out[b] = f(b * kBlock, std::min(pixels, (b + 1) * kBlock));
+  });
+  return out;
+}
+
+}  // namespace
+
 std::size_t FrameAccumulator::retire_converged(double target, std::uint32_t min_spp) {
   if (m_active.empty()) m_active.assign(m_samples.size(), 1);
-  for (std::size_t i = 0; i < m_samples.size(); ++i)
-    if (m_active[i] && m_samples[i].drawn >= min_spp && m_samples[i].relmse_estimate() < target) {
-      m_active[i] = 0;
-      --m_active_count;
+  // A pixel with fewer than two finite samples has no estimate: it samples on.
+  const auto retired = per_block<std::size_t>(m_samples.size(), [&](std::size_t first, std::size_t last) {
+    std::size_t n = 0;
+    for (std::size_t i = first; i < last; ++i) {
+      const PixelSamples& p = m_samples[i];
+      if (m_active[i] && p.drawn >= min_spp && p.finite >= 2 && p.relmse_estimate() < target) {
+        m_active[i] = 0;
+        ++n;
+      }
     }
+    return n;
+  });
+  for (std::size_t n : retired) m_active_count -= n;
   return m_active_count;
 }
 
 double FrameAccumulator::relmse_estimate() const {
+  const auto sums = per_block<double>(m_samples.size(), [&](std::size_t first, std::size_t last) {
+    double sum = 0;
+    for (std::size_t i = first; i < last; ++i) sum += m_samples[i].relmse_estimate();
+    return sum;
+  });
   double sum = 0;
-  for (const PixelSamples& p : m_samples) sum += p.relmse_estimate();
+  for (double x : sums) sum += x;
   return m_samples.empty() ? 0.0 : sum / double(m_samples.size());
 }
 
@@ -43,20 +74,11 @@ SppSpread FrameAccumulator::spp_spread() const {
   return s;
 }
 
-void FrameAccumulator::resolve(Film& film) const {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_samples.size(), 4096), [&](const auto& range) {
-    for (std::size_t pixel = range.begin(); pixel != range.end(); ++pixel) resolve_pixel(film, pixel);
-  });
-}
-
-void FrameAccumulator::resolve_pixel(Film& film, std::size_t pixel) const {
-  const PixelSamples& p = m_samples[pixel];
+void resolve_pixel(Film& film, std::size_t pixel, const PixelSamples& p, const PixelAovSums& a) {
   for (int c = 0; c < 3; ++c) film.rgb[3 * pixel + std::size_t(c)] = float(p.value(c));
   if (!film.variance.empty())
     for (int c = 0; c < 3; ++c) film.variance[3 * pixel + std::size_t(c)] = float(p.variance_of_mean(c));
   if (!film.spp.empty()) film.spp[pixel] = float(p.drawn);
-  if (m_aovs.empty()) return;
-  const PixelAovSums& a = m_aovs[pixel];
   const double inv_drawn = p.drawn > 0 ? 1.0 / double(p.drawn) : 0.0;
   if (!film.albedo.empty())
     for (int c = 0; c < 3; ++c) film.albedo[3 * pixel + std::size_t(c)] = float(a.albedo[c] * inv_drawn);
@@ -69,6 +91,14 @@ void FrameAccumulator::resolve_pixel(Film& film, std::size_t pixel) const {
     film.cost_cells[pixel] = float(a.cells);
     film.cost_tests[pixel] = float(a.tests);
   }
+}
+
+void FrameAccumulator::resolve(Film& film) const {
+  static const PixelAovSums kNone;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_samples.size(), kBlock), [&](const auto& range) {
+    for (std::size_t pixel = range.begin(); pixel != range.end(); ++pixel)
+      resolve_pixel(film, pixel, m_samples[pixel], m_aovs.empty() ? kNone : m_aovs[pixel]);
+  });
 }
 
 }  // namespace kappa

@@ -27,6 +27,12 @@ struct SppSpread {
   double mean = 0;
 };
 
+/// Pixels per block of the frame-wide passes (resolve, estimate, retire).
+inline constexpr std::size_t kBlock = 4096;
+
+/// Writes one pixel's selected channels of `film` from its sums.
+void resolve_pixel(Film& film, std::size_t pixel, const PixelSamples& samples, const PixelAovSums& aovs);
+
 class FrameAccumulator {
  public:
   FrameAccumulator(std::size_t pixels, const AovSelection& aov);
@@ -52,8 +58,6 @@ class FrameAccumulator {
   void resolve(Film& film) const;
 
  private:
-  void resolve_pixel(Film& film, std::size_t pixel) const;
-
   std::vector<PixelSamples> m_samples;
   std::vector<PixelAovSums> m_aovs;
   std::vector<std::uint8_t> m_active;  ///< empty until the first retirement

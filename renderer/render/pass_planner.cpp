@@ -47,7 +47,9 @@ int PassPlanner::next_pass(const FrameState& state) {
       const double per_sample = (now - m_pass_start) / std::max(m_last_pass_work, 1.0);
       const double remaining = m_budget.time_s - (now - m_start);
       const double slot = std::min(kPassShareOfBudget * m_budget.time_s, remaining);
-      const double fits = per_sample > 0 ? std::floor(slot / (per_sample * double(state.active_pixels))) : count;
+      // A clock too coarse to see the last pass: double the samples.
+      const double fits =
+          per_sample > 0 ? std::floor(slot / (per_sample * double(state.active_pixels))) : std::max(1.0, double(state.spp));
       if (!(fits >= 1)) return stop("time-budget");
       count = std::min(count, fits);
     }

@@ -11,6 +11,7 @@
 #include "renderer/render/frame.h"
 #include "renderer/render/interaction.h"
 #include "renderer/render/lights.h"
+#include "renderer/render/samplers.h"
 #include "renderer/render/sampling.h"
 #include "renderer/scene/scene.h"
 
@@ -29,9 +30,11 @@ class PathTracer {
       : m_scene(scene), m_lights(scene), m_settings(settings) {}
 
   /// Radiance arriving along `ray`, asking every visibility query through
-  /// `q` (PlainQueries or CountingQueries, chosen once per frame).
-  template <class Queries>
-  Vec3f radiance(Ray ray, Rng& rng, FirstHit& first, Queries& q) const {
+  /// `q` (PlainQueries or CountingQueries, chosen once per frame), each
+  /// decision reading its numbers from `sampler` at its dimension
+  /// (samplers.h, path_dimensions).
+  template <class Sampler, class Queries>
+  Vec3f radiance(Ray ray, Sampler& sampler, FirstHit& first, Queries& q) const {
     Vec3f L{0, 0, 0};
     Vec3f beta{1, 1, 1};
     float prev_bsdf_pdf = 0;  // solid-angle pdf of the direction that led here
@@ -77,10 +80,11 @@ class PathTracer {
       if (mat.albedo == Vec3f{0, 0, 0}) break;  // black: nothing more to gather
 
       const Vec3f f = mat.albedo * std::numbers::inv_pi_v<float>;  // Lambertian BSDF
-      if (!m_lights.empty()) L += beta * direct_light(sp, n, f, rng, q);
+      if (!m_lights.empty()) L += beta * direct_light(sp, n, f, sampler, depth, q);
 
       // Continue the path by sampling the BSDF (cosine-weighted hemisphere).
-      const Vec3f local = sample_cosine_hemisphere(rng.uniform(), rng.uniform());
+      const auto [v1, v2] = sampler.get2D(path_dimensions::bsdf(depth));
+      const Vec3f local = sample_cosine_hemisphere(v1, v2);
       const float pdf = cosine_hemisphere_pdf(local.z);
       if (!(pdf > 0.0f)) break;
       const Vec3f wi = Frame(n).to_world(local);
@@ -91,7 +95,7 @@ class PathTracer {
 
       if (m_settings.rr_depth >= 0 && depth + 1 >= m_settings.rr_depth) {
         const float q = std::max(0.0f, 1.0f - max_component(beta));
-        if (rng.uniform() < q) break;
+        if (sampler.get1D(path_dimensions::roulette(depth)) < q) break;
         beta /= 1.0f - q;
       }
     }
@@ -100,10 +104,11 @@ class PathTracer {
 
  private:
   /// One light sample with its MIS weight against BSDF sampling.
-  template <class Queries>
-  Vec3f direct_light(const SurfacePoint& sp, const Vec3f& n, const Vec3f& f, Rng& rng, Queries& q) const {
-    const std::size_t light = m_lights.choose(rng.uniform_double());
-    const float u1 = rng.uniform(), u2 = rng.uniform();
+  template <class Sampler, class Queries>
+  Vec3f direct_light(const SurfacePoint& sp, const Vec3f& n, const Vec3f& f, Sampler& sampler, int depth,
+                     Queries& q) const {
+    const std::size_t light = m_lights.choose(sampler.get1D_double(path_dimensions::light_choice(depth)));
+    const auto [u1, u2] = sampler.get2D(path_dimensions::light_point(depth));
     if (light == m_lights.environment_index()) {
       // Cosine-weighted about the oriented normal: directions below the
       // surface would contribute nothing.

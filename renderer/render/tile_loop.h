@@ -9,10 +9,13 @@
 #include <tbb/parallel_for.h>
 
 #include <atomic>
+#include <memory>
+#include <vector>
 
 #include "renderer/render/camera.h"
 #include "renderer/render/frame_accumulator.h"
 #include "renderer/render/path_tracer.h"
+#include "renderer/render/samplers.h"
 
 namespace kappa {
 
@@ -29,20 +32,27 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
   const int tiles_y = (film.height + kTileSize - 1) / kTileSize;
   const std::size_t tile_count = std::size_t(tiles_x) * std::size_t(tiles_y);
   PassControl* const control = settings.passes;
+  PassPlanner* const planner = control ? control->planner : nullptr;
   const std::atomic<bool>* const interrupt = control ? control->interrupt : nullptr;
-  const bool adaptive = control && control->planner && control->planner->budget().adaptive;
+  const bool adaptive = planner && planner->budget().adaptive;
 
   struct Counters {
     std::uint64_t rays = 0, nonfinite = 0;
   };
   tbb::enumerable_thread_specific<Counters> counters;
-  FrameAccumulator acc(film.pixels(), settings.aov);
+  // What pixels keep between passes, only for a progressive frame: a frame
+  // of one pass keeps each pixel's sums on the stack and writes its film
+  // as it goes (and sums its estimate per tile, added in tile order).
+  const std::unique_ptr<FrameAccumulator> acc =
+      control ? std::make_unique<FrameAccumulator>(film.pixels(), settings.aov) : nullptr;
+  std::vector<double> tile_estimates(control ? 0 : tile_count, 0.0);
+  const bool any_aov = !film.albedo.empty() || !film.normal.empty() || !film.depth.empty() || !film.cost_cells.empty();
   std::atomic<bool> abandoned{false};
 
   // One pass: samples [first, first + count) of every pixel still sampling,
   // added to its sums in sample order. A pixel whose pass an interrupt cuts
   // short keeps its sums as they were.
-  const auto run_pass = [&](std::uint32_t first, std::uint32_t count) {
+  const auto run_pass_with = [&]<class Sampler>(std::uint32_t first, std::uint32_t count) {
     std::atomic<std::size_t> tiles_done{0};
     tbb::parallel_for(std::size_t(0), tile_count, [&](std::size_t tile) {
       if (abandoned.load(std::memory_order_relaxed)) return;
@@ -50,12 +60,13 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
       auto queries = make_queries();
       const int x0 = int(tile % std::size_t(tiles_x)) * kTileSize;
       const int y0 = int(tile / std::size_t(tiles_x)) * kTileSize;
+      double tile_estimate = 0;
       for (int y = y0; y < std::min(y0 + kTileSize, film.height); ++y) {
         for (int x = x0; x < std::min(x0 + kTileSize, film.width); ++x) {
           const std::size_t pixel = std::size_t(y) * std::size_t(film.width) + std::size_t(x);
-          if (!acc.active(pixel)) continue;
-          PixelSamples px = acc.samples(pixel);
-          PixelAovSums aovs = acc.has_aovs() ? acc.aov_sums(pixel) : PixelAovSums{};
+          if (acc && !acc->active(pixel)) continue;
+          PixelSamples px = acc ? acc->samples(pixel) : PixelSamples{};
+          PixelAovSums aovs = acc && acc->has_aovs() ? acc->aov_sums(pixel) : PixelAovSums{};
           const QueryWork before = film.cost_cells.empty() ? QueryWork{} : queries.work();
           for (std::uint32_t s = first; s < first + count; ++s) {
             if (interrupt && interrupt->load(std::memory_order_relaxed)) {
@@ -63,35 +74,51 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
               local.rays += queries.rays;
               return;
             }
-            Rng rng(settings.seed, pixel, std::uint64_t(s));
+            Sampler sampler(settings.seed, pixel, std::uint64_t(s), std::uint32_t(settings.spp));
             queries.begin_path(pixel, std::uint64_t(s));
-            const float fx = rng.uniform(), fy = rng.uniform();
+            const auto [fx, fy] = sampler.get2D(path_dimensions::kPixel);
             FirstHit hit;
-            Vec3f L = tracer.radiance(camera.generate_ray(float(x) + fx, float(y) + fy), rng, hit, queries);
+            Vec3f L = tracer.radiance(camera.generate_ray(float(x) + fx, float(y) + fy), sampler, hit, queries);
             if (settings.test_nonfinite && settings.test_nonfinite(pixel, s)) L.x = NAN;
             if (is_finite(L)) px.add(L);
             else ++local.nonfinite;
-            aovs.albedo[0] += hit.albedo.x, aovs.albedo[1] += hit.albedo.y, aovs.albedo[2] += hit.albedo.z;
-            aovs.normal[0] += hit.normal.x, aovs.normal[1] += hit.normal.y, aovs.normal[2] += hit.normal.z;
-            if (std::isfinite(hit.depth)) {
-              aovs.depth += hit.depth;
-              ++aovs.depth_hits;
+            if (any_aov) {
+              aovs.albedo[0] += hit.albedo.x, aovs.albedo[1] += hit.albedo.y, aovs.albedo[2] += hit.albedo.z;
+              aovs.normal[0] += hit.normal.x, aovs.normal[1] += hit.normal.y, aovs.normal[2] += hit.normal.z;
+              if (std::isfinite(hit.depth)) {
+                aovs.depth += hit.depth;
+                ++aovs.depth_hits;
+              }
             }
           }
           px.drawn = first + count;
-          acc.samples(pixel) = px;
           if (!film.cost_cells.empty()) {
             const QueryWork after = queries.work();
             aovs.cells += double(after.cells - before.cells);
             aovs.tests += double(after.tests - before.tests);
           }
-          if (acc.has_aovs()) acc.aov_sums(pixel) = aovs;
+          if (acc) {
+            acc->samples(pixel) = px;
+            if (acc->has_aovs()) acc->aov_sums(pixel) = aovs;
+          } else {
+            resolve_pixel(film, pixel, px, aovs);
+            tile_estimate += px.relmse_estimate();
+          }
         }
       }
+      if (!acc) tile_estimates[tile] = tile_estimate;
       local.rays += queries.rays;
       const std::size_t done = tiles_done.fetch_add(1, std::memory_order_relaxed) + 1;
       if (progress) progress(done, tile_count);
     });
+  };
+  // The sampler, chosen once per frame: each kind its own loop.
+  const auto run_pass = [&](std::uint32_t first, std::uint32_t count) {
+    switch (settings.sampler) {
+      case SamplerKind::independent: return run_pass_with.template operator()<IndependentSampler>(first, count);
+      case SamplerKind::stratified: return run_pass_with.template operator()<StratifiedSampler>(first, count);
+      case SamplerKind::sobol: return run_pass_with.template operator()<SobolSampler>(first, count);
+    }
   };
   const auto totals = [&] {
     Counters sum;
@@ -104,10 +131,9 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
 
   RenderResult result;
   Counters completed;  // as of the last completed pass
-  FrameState state{0, acc.active_pixels(), 0.0};
+  FrameState state{0, film.pixels(), 0.0};
   for (;;) {
-    const int count = control && control->planner ? control->planner->next_pass(state)
-                                                   : (result.passes == 0 ? settings.spp : 0);
+    const int count = planner ? planner->next_pass(state) : (result.passes == 0 ? settings.spp : 0);
     if (count <= 0) break;
     run_pass(std::uint32_t(state.spp), std::uint32_t(count));
     if (abandoned.load()) {
@@ -117,23 +143,24 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
     ++result.passes;
     state.spp += count;
     completed = totals();
-    if (control) {
+    if (acc) {
       // The film of every completed pass, ready to be written if the next
       // is interrupted; then what the planner decides the next pass from.
-      acc.resolve(film);
-      if (adaptive && state.spp >= control->planner->budget().adaptive_min_spp)
-        acc.retire_converged(control->planner->budget().target_relmse,
-                             std::uint32_t(control->planner->budget().adaptive_min_spp));
-      state.active_pixels = acc.active_pixels();
-      state.relmse_estimate = acc.relmse_estimate();
-      result.spp_spread = acc.spp_spread();
+      acc->resolve(film);
+      if (adaptive && state.spp >= planner->budget().adaptive_min_spp)
+        acc->retire_converged(planner->budget().target_relmse, std::uint32_t(planner->budget().adaptive_min_spp));
+      state.active_pixels = acc->active_pixels();
+      state.relmse_estimate = acc->relmse_estimate();
+      result.spp_spread = acc->spp_spread();
       if (control->on_pass) control->on_pass(state, result.passes);
     }
   }
-  if (!control) {
-    acc.resolve(film);
-    state.relmse_estimate = acc.relmse_estimate();
-    result.spp_spread = acc.spp_spread();
+  if (!acc) {
+    double sum = 0;
+    for (double e : tile_estimates) sum += e;
+    state.relmse_estimate = film.pixels() > 0 ? sum / double(film.pixels()) : 0.0;
+    const auto spp = std::uint32_t(state.spp);
+    result.spp_spread = SppSpread{spp, spp, double(spp)};
   }
 
   const Counters all = totals();
@@ -142,7 +169,7 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
   result.nonfinite_samples = completed.nonfinite;
   result.spp = state.spp;
   result.relmse_estimate = state.relmse_estimate;
-  if (control && control->planner) result.stop_reason = result.interrupted ? "interrupted" : control->planner->stop_reason();
+  if (planner) result.stop_reason = result.interrupted ? "interrupted" : planner->stop_reason();
   return result;
 }
 

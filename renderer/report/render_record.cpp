@@ -19,7 +19,8 @@ std::string input_hash(const Scene& scene) {
   return hex;
 }
 
-RenderRecord render_record(const RenderOptions& options, const Scene& scene, const std::string& grid_res, int spp) {
+RenderRecord render_record(const RenderOptions& options, const Scene& scene, const std::string& grid_res, int spp,
+                           const Budget& budget) {
   RenderRecord record = {
       {"scene", scene.source.string()},
       {"input_hash", input_hash(scene)},
@@ -28,6 +29,7 @@ RenderRecord render_record(const RenderOptions& options, const Scene& scene, con
       {"width", scene.width},
       {"height", scene.height},
       {"spp", spp},
+      {"sampler", options.sampler},
       {"max_depth", options.max_depth},
       {"rr_depth", options.rr_depth},
       {"russian_roulette", !options.no_rr},
@@ -36,11 +38,11 @@ RenderRecord render_record(const RenderOptions& options, const Scene& scene, con
       {"stats", options.stats},
       {"cell_sample", options.cell_sample},
   };
-  if (!options.time_budget.empty()) record.emplace_back("time_budget", options.time_budget);
-  if (!options.target_relmse.empty()) record.emplace_back("target_relmse", std::stod(options.target_relmse));
-  if (options.adaptive) {
+  if (budget.time_s > 0) record.emplace_back("time_budget", options.time_budget);
+  if (budget.target_relmse > 0) record.emplace_back("target_relmse", budget.target_relmse);
+  if (budget.adaptive) {
     record.emplace_back("adaptive", true);
-    record.emplace_back("adaptive_min_spp", options.adaptive_min_spp);
+    record.emplace_back("adaptive_min_spp", budget.adaptive_min_spp);
   }
   return record;
 }

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/cli/options.h"
+#include "renderer/render/pass_planner.h"
 #include "renderer/scene/scene.h"
 
 namespace kappa {
@@ -27,7 +28,8 @@ using RenderRecord = std::vector<std::pair<std::string, SettingValue>>;
 /// --grid-res takes back), or "none" for an accelerator without cells.
 /// `spp` is the samples per pixel the render took (a budget decides them),
 /// and the budgets appear when they were set.
-RenderRecord render_record(const RenderOptions& options, const Scene& scene, const std::string& grid_res, int spp);
+RenderRecord render_record(const RenderOptions& options, const Scene& scene, const std::string& grid_res, int spp,
+                           const Budget& budget = {});
 
 /// FNV-1a 64 over every input file's bytes, in order, as 16 hex digits.
 std::string input_hash(const Scene& scene);

@@ -23,10 +23,11 @@ Scene furnace(float rho, float Le) {
   return s;
 }
 
-void expect_furnace(float rho, int spp, int max_depth) {
+void expect_furnace(float rho, int spp, int max_depth, SamplerKind sampler = SamplerKind::independent) {
   const float Le = 0.5f;
   const double expected = Le / (1.0 - rho);
   RenderSettings settings;
+  settings.sampler = sampler;
   settings.spp = spp;
   settings.max_depth = max_depth;
   const Film film = test::render_scene(furnace(rho, Le), settings);
@@ -45,6 +46,16 @@ void expect_furnace(float rho, int spp, int max_depth) {
 TEST(Analytic, FurnaceConvergesToLeOverOneMinusRho) { expect_furnace(0.5f, 64, 32); }
 
 TEST(Analytic, FurnaceWithRho099ExercisesRussianRoulette) { expect_furnace(0.99f, 16, 2000); }
+
+// Every sampler converges to the same value: stratifying a dimension must
+// not bias the decision that reads it.
+TEST(Analytic, FurnaceUnderEverySampler) {
+  for (SamplerKind k : {SamplerKind::stratified, SamplerKind::sobol}) {
+    SCOPED_TRACE(sampler_name(k));
+    expect_furnace(0.5f, 64, 32, k);
+    expect_furnace(0.99f, 16, 2000, k);
+  }
+}
 
 // Truncated at d bounces (no Russian roulette), the furnace holds the first
 // d + 1 terms of its series: Le (1 - rho^(d+1)) / (1 - rho). Next-event

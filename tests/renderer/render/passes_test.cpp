@@ -5,6 +5,7 @@
 // image for any thread count.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 
@@ -86,6 +87,46 @@ TEST(Passes, AStoppedRenderIsBitwiseTheSppImageOfItsTotal) {
   // And the total matters: one sample fewer is another image.
   settings.spp -= 1;
   EXPECT_FALSE(bitwise_equal(budgeted.film.rgb, test::render_scene(scene, settings, "grid").rgb));
+}
+
+// The interrupt of the next test, raised from inside a pass: the test hook
+// sees every sample, and once armed it interrupts after 100 more.
+std::atomic<bool> g_interrupt{false}, g_armed{false};
+std::atomic<int> g_samples_since_armed{0};
+bool interrupt_mid_pass(std::uint64_t, std::uint64_t) {
+  if (g_armed && g_samples_since_armed.fetch_add(1) == 100) g_interrupt = true;
+  return false;
+}
+
+TEST(Passes, AnInterruptedRenderIsTheImageOfItsCompletedPasses) {
+  const Scene scene = cornell(24);
+  RenderSettings settings;
+  settings.aov.variance = true;
+  settings.test_nonfinite = interrupt_mid_pass;
+  Budget budget;
+  budget.time_s = 1.0;
+  FakeClock clock;
+  PassPlanner planner(budget, [&clock] { return clock.now; });
+  Film film(scene.width, scene.height, settings.aov);
+  // Once three passes are complete, the fourth is interrupted after 100 of
+  // its samples: some of its pixels have their samples, others not.
+  PassControl control{&planner, &g_interrupt, [&](const FrameState& state, int passes) {
+                        clock.advance_to(state.spp);
+                        if (passes == 3) g_armed = true;
+                      }};
+  settings.passes = &control;
+  const auto accel = make_accelerator("grid", scene.triangles);
+  const RenderResult r = render(scene, *accel, settings, film);
+  EXPECT_TRUE(r.interrupted);
+  EXPECT_EQ(r.passes, 3);
+  EXPECT_EQ(r.stop_reason, "interrupted");
+  EXPECT_GT(r.abandoned_rays, 0u) << "the fourth pass had begun";
+  settings.passes = nullptr;
+  settings.test_nonfinite = nullptr;
+  settings.spp = r.spp;
+  const Film one_pass = test::render_scene(scene, settings, "grid");
+  EXPECT_TRUE(bitwise_equal(film.rgb, one_pass.rgb)) << r.spp << " spp";
+  EXPECT_TRUE(bitwise_equal(film.variance, one_pass.variance));
 }
 
 TEST(Passes, TheTimeBudgetEndsWithinItsTenPerCentAndPassesTakeAtMostFivePerCent) {
