@@ -4,8 +4,10 @@
 # statistics off:
 #   relmse    --target-relmse 0.01, RUNS runs with seeds 1..RUNS: the image's
 #             true relMSE against a Kappa reference of REF_SPP (16384) spp
-#             with seed 1000 (cached in build/references/), the render's own
-#             estimate and their ratio, the spp taken and the render time;
+#             with seed 1000 (cached in build/references/, with its variance
+#             AOV: the reference's own noise is taken out of the relMSE, see
+#             tools/relmse.py), the render's own estimate and their ratio, the
+#             spp taken and the render time;
 #   adaptive  --adaptive --target-relmse E against uniform sampling given the
 #             adaptive render's time as --time-budget: the relMSE of each;
 #   time      --time-budget 10s: render.time_s, RUNS runs.
@@ -21,6 +23,10 @@ what="$1"; shift
 python=/usr/bin/python3
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+# The relMSE against the reference, less the reference's own share when it has one.
+true_relmse() {
+  "$python" tools/relmse.py "$1" "$2" | awk '{v = $2; for (i = 1; i < NF; i++) if ($i == "corrected") v = $(i + 1); print v}'
+}
 field() { "$python" -c "import json,sys; j=json.load(open(sys.argv[1]))['render']; print(j[sys.argv[2]])" "$1" "$2"; }
 name_of() { basename "$(dirname "$1")"; }
 
@@ -29,7 +35,8 @@ reference() {  # scene -> path of its cached reference
   mkdir -p build/references
   if [ ! -f "$ref" ]; then
     echo "making the reference $ref ($ref_spp spp)..." >&2
-    "$kappa" render "$1" --width "$size" --height "$size" --spp "$ref_spp" --seed 1000 --stats off --quiet --out "$ref"
+    "$kappa" render "$1" --width "$size" --height "$size" --spp "$ref_spp" --seed 1000 --stats off --quiet \
+      --aov variance --out "$ref"
   fi
   echo "$ref"
 }
@@ -45,11 +52,11 @@ for scene in "$@"; do
       for ((seed = 1; seed <= runs; seed++)); do
         "$kappa" render "$scene" --width "$size" --height "$size" --target-relmse "$target" --seed "$seed" --stats off \
           --quiet --out "$tmp/x.exr" --report "$tmp/x.json"
-        true_relmse=$("$python" tools/relmse.py "$tmp/x.exr" "$ref" | awk '{print $2}')
+        t_relmse=$(true_relmse "$tmp/x.exr" "$ref")
         est=$(field "$tmp/x.json" relmse_estimate)
         printf "| %s | %d | %s | %s | %.2f | %.5f | %.5f | %.3f |\n" "$name" "$seed" "$(field "$tmp/x.json" spp)" \
-          "$(field "$tmp/x.json" passes)" "$(field "$tmp/x.json" time_s)" "$est" "$true_relmse" \
-          "$("$python" -c "print($est / $true_relmse)")"
+          "$(field "$tmp/x.json" passes)" "$(field "$tmp/x.json" time_s)" "$est" "$t_relmse" \
+          "$("$python" -c "print($est / $t_relmse)")"
       done
       ;;
     adaptive)
@@ -64,8 +71,8 @@ for scene in "$@"; do
           --quiet --out "$tmp/u.exr" --report "$tmp/u.json"
         printf "| %s | %d | %s/%.1f/%s | %.2f | %.5f | %s | %.2f | %.5f |\n" "$name" "$seed" \
           "$(field "$tmp/a.json" spp_min)" "$(field "$tmp/a.json" spp_mean)" "$(field "$tmp/a.json" spp_max)" "$t" \
-          "$("$python" tools/relmse.py "$tmp/a.exr" "$ref" | awk '{print $2}')" "$(field "$tmp/u.json" spp)" \
-          "$(field "$tmp/u.json" time_s)" "$("$python" tools/relmse.py "$tmp/u.exr" "$ref" | awk '{print $2}')"
+          "$(true_relmse "$tmp/a.exr" "$ref")" "$(field "$tmp/u.json" spp)" \
+          "$(field "$tmp/u.json" time_s)" "$(true_relmse "$tmp/u.exr" "$ref")"
       done
       ;;
     time)
