@@ -47,9 +47,12 @@ int PassPlanner::next_pass(const FrameState& state) {
       const double per_sample = (now - m_pass_start) / std::max(m_last_pass_work, 1.0);
       const double remaining = m_budget.time_s - (now - m_start);
       const double slot = std::min(kPassShareOfBudget * m_budget.time_s, remaining);
-      // A clock too coarse to see the last pass: double the samples.
-      const double fits =
-          per_sample > 0 ? std::floor(slot / (per_sample * double(state.active_pixels))) : std::max(1.0, double(state.spp));
+      // A clock too coarse to see the last pass: double the samples. A
+      // sample per pixel that takes more than 5 % is the smallest pass
+      // there is: it runs while it fits in what is left.
+      const double one_spp = per_sample * double(state.active_pixels);
+      double fits = per_sample > 0 ? std::floor(slot / one_spp) : std::max(1.0, double(state.spp));
+      if (!(fits >= 1) && one_spp <= remaining) fits = 1;
       if (!(fits >= 1)) return stop("time-budget");
       count = std::min(count, fits);
     }

@@ -142,14 +142,23 @@ TEST(Passes, TheTimeBudgetEndsWithinItsTenPerCentAndPassesTakeAtMostFivePerCent)
     for (std::size_t i = 1; i < r.pass_spp.size(); ++i)
       EXPECT_LE((r.pass_spp[i] - r.pass_spp[i - 1]) * per_sample, 0.05 * budget.time_s * (1 + 1e-12)) << per_sample;
   }
+  // A sample per pixel that takes 20 % of the budget: passes of one sample,
+  // as many as fit (it once stopped after the first).
+  Budget budget;
+  budget.time_s = 1.0;
+  FakeClock slow;
+  slow.per_sample = 0.2;
+  const Rendered r = render_budgeted(scene, budget, RenderSettings{}, slow);
+  EXPECT_EQ(r.result.spp, 5);
+  EXPECT_LE(slow.now, budget.time_s * (1 + 1e-12));
   // --spp caps the passes under a budget.
   Budget capped;
   capped.time_s = 1.0;
   capped.spp_cap = 17;
   FakeClock clock;
-  const Rendered r = render_budgeted(scene, capped, RenderSettings{}, clock);
-  EXPECT_EQ(r.result.spp, 17);
-  EXPECT_EQ(r.result.stop_reason, "spp");
+  const Rendered c = render_budgeted(scene, capped, RenderSettings{}, clock);
+  EXPECT_EQ(c.result.spp, 17);
+  EXPECT_EQ(c.result.stop_reason, "spp");
 }
 
 TEST(PassPlanner, ATargetIsCheckedFromEightSamplesAndStopsBelowIt) {
