@@ -145,14 +145,29 @@ int wait_or_kill(pid_t pid, int seconds) {
   return status;
 }
 
+/// Renders into `dir` with `extra` flags; once `passes` passes are complete,
+/// sends `sigints` SIGINTs 20 ms apart (pending SIGINTs would merge into
+/// one) and returns the exit status.
+int interrupt_after(const fs::path& dir, const fs::path& passes_file, std::vector<std::string> extra, int passes,
+                    int sigints = 1) {
+  const Spawned s = spawn_render(dir, passes_file, std::move(extra));
+  if (!wait_for_passes(s, passes)) {
+    ADD_FAILURE() << "kappa never completed " << passes << " passes";
+    ::kill(s.pid, SIGKILL);
+  }
+  for (int i = 0; i < sigints; ++i) {
+    if (i > 0) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    ::kill(s.pid, SIGINT);
+  }
+  return wait_or_kill(s.pid, 60);
+}
+
 TEST(Budget, CtrlCAbandonsThePassAndWritesTheCompletedOnes) {
   test::TempDir tmp, side;
   // An hour's budget: after the first pass (1 spp) each pass is sized to
   // three minutes, so the SIGINT falls inside one.
-  const Spawned s = spawn_render(tmp.path(), side / "passes", {"--width", "64", "--height", "64", "--time-budget", "1h"});
-  ASSERT_TRUE(wait_for_passes(s, 1));
-  ::kill(s.pid, SIGINT);
-  const int status = wait_or_kill(s.pid, 60);
+  const int status =
+      interrupt_after(tmp.path(), side / "passes", {"--width", "64", "--height", "64", "--time-budget", "1h"}, 1);
   ASSERT_TRUE(WIFEXITED(status)) << "status " << status;
   EXPECT_EQ(WEXITSTATUS(status), 130);
   ASSERT_TRUE(fs::exists(tmp / "x.json"));
@@ -168,11 +183,8 @@ TEST(Budget, CtrlCAbandonsThePassAndWritesTheCompletedOnes) {
 TEST(Budget, CtrlCBeforeAPassIsCompleteWritesNothing) {
   // The first pass of a noise target is 8 spp: at 1024 x 1024, seconds long.
   test::TempDir tmp, side;
-  const Spawned s =
-      spawn_render(tmp.path(), side / "passes", {"--width", "1024", "--height", "1024", "--target-relmse", "1e-6"});
-  ASSERT_TRUE(wait_for_passes(s, 0));
-  ::kill(s.pid, SIGINT);
-  const int status = wait_or_kill(s.pid, 60);
+  const int status = interrupt_after(tmp.path(), side / "passes",
+                                     {"--width", "1024", "--height", "1024", "--target-relmse", "1e-6"}, 0);
   ASSERT_TRUE(WIFEXITED(status)) << "status " << status;
   EXPECT_EQ(WEXITSTATUS(status), 130);
   EXPECT_EQ(test::read_file(side / "passes"), "0\n") << "the first pass was not complete";
@@ -184,13 +196,8 @@ TEST(Budget, ASecondCtrlCWritesNothing) {
   // first pass's 1024 x 1024 image is being compressed and written, and
   // keeps the policy of a render without a budget.
   test::TempDir tmp, side;
-  const Spawned s =
-      spawn_render(tmp.path(), side / "passes", {"--width", "1024", "--height", "1024", "--time-budget", "1h"});
-  ASSERT_TRUE(wait_for_passes(s, 1));
-  ::kill(s.pid, SIGINT);
-  std::this_thread::sleep_for(std::chrono::milliseconds(20));  // pending SIGINTs would merge into one
-  ::kill(s.pid, SIGINT);
-  const int status = wait_or_kill(s.pid, 60);
+  const int status = interrupt_after(tmp.path(), side / "passes",
+                                     {"--width", "1024", "--height", "1024", "--time-budget", "1h"}, 1, 2);
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << "status " << status;
   EXPECT_EQ(entries(tmp.path()), 0u);
 }
