@@ -3,6 +3,7 @@
 #include "renderer/commands/bench_command.h"
 #include "renderer/commands/calibrate_command.h"
 #include "renderer/commands/cast_command.h"
+#include "renderer/commands/converge_command.h"
 #include "renderer/commands/render_command.h"
 
 #include <csignal>
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
       int operator()(const kappa::CastOptions& o) const { return kappa::run_cast(o); }
       int operator()(const kappa::BenchOptions& o) const { return kappa::run_bench(o); }
       int operator()(const kappa::CalibrateOptions& o) const { return kappa::run_calibrate(o); }
+      int operator()(const kappa::ConvergeOptions& o) const { return kappa::run_converge(o); }
     };
     return std::visit(Run{}, command);
   });

@@ -9,7 +9,7 @@ packages=(
   libopenexr-dev libopenimageio-dev libtinyobjloader-dev libtbb-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev
   libembree-dev libbenchmark-dev
-  python3-numpy python3-openimageio
+  python3-numpy python3-openimageio python3-matplotlib
 )
 
 missing=()

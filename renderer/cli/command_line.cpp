@@ -14,28 +14,42 @@
 namespace kappa {
 namespace {
 
-/// `kappa render` and its flags, bound to `o`.
-CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
-  CLI::App& render = *app.add_subcommand("render", "render a scene to EXR");
-  render.add_option("scene", o.scene, "scene.json or .obj file")->required();
+/// The flags of `kappa render` that set up a frame, bound to `o`; with
+/// `converge` only those kappa converge takes (the film's outputs, the budgets
+/// and --spp are its own).
+void add_render_flags(CLI::App& render, RenderOptions& o, bool converge) {
   add_accel_flag(render, o.accel, "accelerator");
   add_grid_flags(render, o.build);
-  render.add_option("--spp", o.spp, "samples per pixel (with a budget: the most, if given)")
-      ->check(CLI::Range(1, 1 << 20))
-      ->capture_default_str();
+  if (!converge)
+    render.add_option("--spp", o.spp, "samples per pixel (with a budget: the most, if given)")
+        ->check(CLI::Range(1, 1 << 20))
+        ->capture_default_str();
   render.add_option("--sampler", o.sampler,
                     "where samples fall: independent (PCG32), stratified (jittered strata; needs --spp, so no budget) "
                     "or sobol (Owen-scrambled Sobol (0,2)-sequence, shuffled per dimension pair)")
       ->check(CLI::IsMember({"independent", "stratified", "sobol"}))
       ->capture_default_str();
-  render.add_option("--time-budget", o.time_budget,
-                    "render in passes until this time is spent: a number and a unit, 500ms, 30s, 2m, 1h");
-  render.add_option("--target-relmse", o.target_relmse,
-                    "render in passes until the estimated relMSE (mean of (s^2/n)/(mean^2 + 0.01)) is below this");
-  render.add_flag("--adaptive", o.adaptive, "pixels whose own estimate is below --target-relmse stop sampling");
-  render.add_option("--adaptive-min-spp", o.adaptive_min_spp, "samples a pixel takes before --adaptive may stop it")
-      ->check(CLI::Range(1, 1 << 20))
+  render.add_option("--light-sampling", o.light_sampling,
+                    "how paths gather light: mis (light and BSDF samples, power heuristic), nee (light samples; "
+                    "BSDF-sampled rays count only what light sampling cannot reach) or bsdf (no shadow rays)")
+      ->check(CLI::IsMember({"mis", "nee", "bsdf"}))
       ->capture_default_str();
+  render.add_option("--specialise", o.specialise,
+                    "on: the integrator compiled for what the scene has (no light sampling without emitters, no "
+                    "environment look-up in a closed scene, no first hit without AOVs); off: the general one, "
+                    "the same image, to measure what that saves")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  if (!converge) {
+    render.add_option("--time-budget", o.time_budget,
+                      "render in passes until this time is spent: a number and a unit, 500ms, 30s, 2m, 1h");
+    render.add_option("--target-relmse", o.target_relmse,
+                      "render in passes until the estimated relMSE (mean of (s^2/n)/(mean^2 + 0.01)) is below this");
+    render.add_flag("--adaptive", o.adaptive, "pixels whose own estimate is below --target-relmse stop sampling");
+    render.add_option("--adaptive-min-spp", o.adaptive_min_spp, "samples a pixel takes before --adaptive may stop it")
+        ->check(CLI::Range(1, 1 << 20))
+        ->capture_default_str();
+  }
   render.add_option("--max-depth", o.max_depth, "bounces after the camera ray (1 = direct lighting)")
       ->check(CLI::Range(0, 1 << 20))
       ->capture_default_str();
@@ -47,8 +61,10 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   render.add_option("--threads", o.threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   render.add_option("--width", o.width, "film width (overrides the scene)")->check(CLI::Range(1, 1 << 15));
   render.add_option("--height", o.height, "film height (overrides the scene)")->check(CLI::Range(1, 1 << 15));
-  render.add_option("--out", o.out, "output EXR (default out/<scene name>.exr)");
-  render.add_option("--aov", o.aov, "extra EXR channels: comma list of albedo, normal, depth, cost, variance, spp");
+  if (!converge) {
+    render.add_option("--out", o.out, "output EXR (default out/<scene name>.exr)");
+    render.add_option("--aov", o.aov, "extra EXR channels: comma list of albedo, normal, depth, cost, variance, spp");
+  }
   render.add_flag("-q,--quiet", o.quiet, "no progress bar, summary line or statistics table");
   render.add_option("--stats", o.stats, "per ray class: rays, hits and time; with the grid also cells, tests and hits, per cell and in total")
       ->check(CLI::IsMember({"on", "off"}))
@@ -57,13 +73,45 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
                     "count per cell for 1 path in N (auto: every path on grids of up to 65536 cells, 1 in N_c/8192 rounded down to a power of two, within 64..1024, on larger ones); "
                     "totals always count every ray")
       ->capture_default_str();
+  if (converge) return;
   render.add_option("--report", o.report, "write the per-frame JSON report (stats/README.md) here");
   render.add_option("--cell-map", o.cell_map, "per-cell p_i and Theta_i projected along an axis, to F.exr or F.png");
   render.add_option("--cell-map-axis", o.cell_map_axis, "projection axis of the cell map")
       ->check(CLI::IsMember({"x", "y", "z"}))
       ->capture_default_str();
   render.add_option("--calibration", o.calibration, "cost model constants from kappa calibrate (default: beside the executable)");
+}
+
+/// `kappa render` and its flags, bound to `o`.
+CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
+  CLI::App& render = *app.add_subcommand("render", "render a scene to EXR");
+  render.add_option("scene", o.scene, "scene.json or .obj file")->required();
+  add_render_flags(render, o, false);
   return &render;
+}
+
+/// `kappa converge` and its flags, bound to `o`.
+CLI::App* add_converge_command(CLI::App& app, ConvergeOptions& o) {
+  CLI::App& converge = *app.add_subcommand(
+      "converge", "error against time: render progressively, compare with a reference, one curve per setting");
+  converge.add_option("scene", o.render.scene, "scene.json or .obj file")->required();
+  o.render.stats = "off";  // times without counting, unless asked
+  add_render_flags(converge, o.render, true);
+  converge.add_option("--reference", o.reference,
+                      "reference EXR (default: rendered at 16x the largest --spp with another seed, cached in "
+                      "references/ beside the executable)");
+  converge.add_option("--spp", o.spp, "sample counts at which the error is measured, ascending")
+      ->delimiter(',')
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  converge.add_option("--vary", o.vary,
+                      "KEY=V1,V2,...: one curve per value of render's option --KEY, the others at their defaults "
+                      "(several --vary keys vary one at a time)")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  converge.add_option("--json", o.json, "write the curves and the ranking as JSON");
+  converge.add_option("--plot", o.plot, "plot relMSE against time, log-log, to F.png (python3-matplotlib)");
+  return &converge;
 }
 
 /// `kappa bench` and its flags, bound to `o`.
@@ -152,7 +200,9 @@ std::optional<int> parse_command_line(int argc, char** argv, Command& command) {
   BenchOptions bench_options;
   CastOptions cast_options;
   CalibrateOptions calibrate_options;
+  ConvergeOptions converge_options;
   const CLI::App* render = add_render_command(app, render_options);
+  const CLI::App* converge = add_converge_command(app, converge_options);
   const CLI::App* bench = add_bench_command(app, bench_options);
   const CLI::App* cast = add_cast_command(app, cast_options);
   add_calibrate_command(app, calibrate_options);
@@ -175,8 +225,23 @@ std::optional<int> parse_command_line(int argc, char** argv, Command& command) {
   }
   else if (bench->parsed()) command = std::move(bench_options);
   else if (cast->parsed()) command = std::move(cast_options);
+  else if (converge->parsed()) command = std::move(converge_options);
   else command = std::move(calibrate_options);  // require_subcommand(1): one of the four
   return std::nullopt;
+}
+
+RenderOptions vary_render_option(const RenderOptions& base, const std::string& key, const std::string& value) {
+  RenderOptions o = base;
+  CLI::App app{"kappa converge --vary"};
+  add_render_flags(app, o, true);
+  std::vector<std::string> args = {"--" + key + "=" + value};  // CLI11 parses a reversed vector
+  try {
+    app.parse(args);
+  } catch (const CLI::ParseError& e) {
+    throw InputError("--vary " + key + "=" + value + ": " + e.what() +
+                     " (keys are render's options that kappa converge takes)");
+  }
+  return o;
 }
 
 int exit_code_of(const std::function<int()>& run) {

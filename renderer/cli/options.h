@@ -18,6 +18,8 @@ struct RenderOptions {
   int spp = 64;                 ///< samples per pixel (with a budget: the cap, when given)
   bool spp_given = false;       ///< --spp was on the command line
   std::string sampler = "independent";  ///< --sampler: independent | stratified | sobol
+  std::string light_sampling = "mis";  ///< --light-sampling: mis | nee | bsdf
+  std::string specialise = "on";  ///< --specialise: on | off (the general integrator, for measuring)
   std::string time_budget;      ///< --time-budget: "500ms", "30s", "2m", "1h"
   bool time_budget_given = false;
   std::string target_relmse;    ///< --target-relmse, a number above 0
@@ -82,6 +84,19 @@ struct CalibrateOptions {
   AccelOptions build;  ///< grid_max_bytes only: the densities set the resolutions
   std::string out;  ///< default: default_calibration_path()
   bool no_generated = false;  ///< measure only the scenes given, not the generated soups too
+};
+
+}  // namespace kappa
+
+namespace kappa {
+
+struct ConvergeOptions {
+  RenderOptions render;  ///< every curve's settings before its --vary (--spp, outputs and budgets unused)
+  std::string reference;  ///< reference EXR; empty: a self-made one, cached
+  std::vector<int> spp = {1, 2, 4, 8, 16, 32, 64, 128, 256};  ///< where the error is measured
+  std::vector<std::string> vary;  ///< KEY=V1,V2,...
+  std::string json;  ///< the curves and the ranking
+  std::string plot;  ///< a PNG made by tools/converge_plot.py
 };
 
 }  // namespace kappa

@@ -20,6 +20,7 @@
 #include "renderer/cli/duration.h"
 #include "renderer/cli/interrupt.h"
 #include "renderer/cli/progress.h"
+#include "renderer/cli/render_settings.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/cell_map.h"
 #include "renderer/io/exr_output.h"
@@ -131,16 +132,7 @@ int run_render(const RenderOptions& options) {
 #ifdef KAPPA_NO_STATS
   if (options.stats == "on") throw InputError("--stats on: this kappa was built without statistics (-DKAPPA_STATS=OFF)");
 #endif
-  std::uint64_t cell_sample = 0;  // auto
-  if (options.cell_sample != "auto") {
-    std::uint64_t n = 0;
-    const char* first = options.cell_sample.data();
-    const char* last = first + options.cell_sample.size();
-    const auto [end, ec] = std::from_chars(first, last, n);
-    if (ec != std::errc() || end != last || n < 1 || n > (std::uint64_t(1) << 20))
-      throw InputError("--cell-sample: '" + options.cell_sample + "' is neither auto nor a whole number from 1 to 1048576");
-    cell_sample = n;
-  }
+  const std::uint64_t cell_sample = parse_cell_sample(options.cell_sample);  // refused before loading
   if (aov.cost && (options.stats != "on" || options.accel != "grid"))
     throw InputError("--aov cost: needs --accel grid and --stats on (it counts the grid's cells and tests)");
   if (!options.out.empty() && std::filesystem::path(options.out).extension() != ".exr")
@@ -190,15 +182,7 @@ int run_render(const RenderOptions& options) {
   });
   const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
-  RenderSettings settings;
-  settings.spp = options.spp;
-  settings.max_depth = options.max_depth;
-  settings.rr_depth = options.no_rr ? -1 : options.rr_depth;
-  settings.seed = options.seed;
-  settings.sampler = parse_sampler(options.sampler);
-  settings.aov = aov;
-  settings.stats = options.stats == "on";
-  settings.stats_max_bytes = options.build.max_bytes();
+  RenderSettings settings = render_settings_of(options, aov);
   settings.cell_sample = cell_sample;
   const int threads = active_threads();
 

@@ -12,6 +12,7 @@
 #include "renderer/render/film.h"
 #include "renderer/render/frame_accumulator.h"
 #include "renderer/render/pass_planner.h"
+#include "renderer/render/path_variant.h"
 #include "renderer/render/sampler_kind.h"
 #include "stats/per_cell_budget.h"
 #include "stats/render_counters.h"
@@ -33,6 +34,10 @@ struct RenderSettings {
   int rr_depth = 3;         ///< Russian roulette from this many bounces on; < 0 disables it
   std::uint64_t seed = 0;
   SamplerKind sampler = SamplerKind::independent;  ///< samplers.h; stratified needs spp, so no budget
+  LightSampling light_sampling = LightSampling::mis;  ///< path_variant.h
+  /// The integrator compiled for what the scene has (false: the general one,
+  /// the same image, to measure what specialising saves).
+  bool specialise = true;
   AovSelection aov;
   bool stats = false;       ///< per-class counters (grid only), chosen once per frame
   std::uint64_t stats_max_bytes = std::uint64_t(1) << 32;  ///< budget for per-cell counters plus the grid
@@ -59,6 +64,7 @@ struct RenderResult {
   double relmse_estimate = 0;        ///< FrameAccumulator::relmse_estimate of the film
   SppSpread spp_spread;              ///< samples per pixel, min, mean and max
   std::string stop_reason;           ///< the planner's (PassPlanner::stop_reason), "" without one
+  std::string path_variant;          ///< the integrator that ran (path_variant_name)
 };
 
 /// Called after each finished tile with (tiles done, tiles in all); it must be

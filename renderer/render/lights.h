@@ -15,6 +15,8 @@ class Lights {
   explicit Lights(const Scene& scene);
 
   bool empty() const { return m_cdf.empty(); }
+  /// Emissive triangles bright enough to be picked (the environment aside).
+  std::size_t triangle_count() const { return m_triangles.size(); }
 
   /// Picks a light from u in [0, 1): the index of an emissive triangle in
   /// `triangle(i)`, or `environment_index()` for the sky.

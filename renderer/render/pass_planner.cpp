@@ -57,6 +57,11 @@ int PassPlanner::next_pass(const FrameState& state) {
       count = std::min(count, fits);
     }
   }
+  for (int c : m_budget.checkpoints)
+    if (c > state.spp) {
+      count = std::min(count, double(c - state.spp));
+      break;
+    }
   m_pass_start = now;
   m_last_pass_work = count * double(state.active_pixels);
   return int(count);

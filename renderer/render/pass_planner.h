@@ -8,11 +8,15 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace kappa {
 
 struct Budget {
   std::optional<int> spp_cap;  ///< --spp, when given: the passes' total never exceeds it
+  /// Totals a pass must end at, ascending (kappa converge measures the film
+  /// at each); the cap still ends the render.
+  std::vector<int> checkpoints;
   double time_s = 0;           ///< --time-budget (0: none)
   double target_relmse = 0;    ///< --target-relmse (0: none)
   bool adaptive = false;       ///< pixels below the target stop sampling (needs a target)

@@ -47,12 +47,15 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
       control ? std::make_unique<FrameAccumulator>(film.pixels(), settings.aov) : nullptr;
   std::vector<double> tile_estimates(control ? 0 : tile_count, 0.0);
   const bool any_aov = !film.albedo.empty() || !film.normal.empty() || !film.depth.empty() || !film.cost_cells.empty();
+  // The integrator: only what the scene and the settings need (path_variant.h).
+  const PathVariant variant =
+      choose_path_variant(tracer.lighting(), settings.light_sampling, any_aov, settings.specialise);
   std::atomic<bool> abandoned{false};
 
   // One pass: samples [first, first + count) of every pixel still sampling,
   // added to its sums in sample order. A pixel whose pass an interrupt cuts
   // short keeps its sums as they were.
-  const auto run_pass_with = [&]<class Sampler>(std::uint32_t first, std::uint32_t count) {
+  const auto run_pass_with = [&]<class Sampler, PathVariant V>(std::uint32_t first, std::uint32_t count) {
     std::atomic<std::size_t> tiles_done{0};
     tbb::parallel_for(std::size_t(0), tile_count, [&](std::size_t tile) {
       if (abandoned.load(std::memory_order_relaxed)) return;
@@ -67,7 +70,7 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
           if (acc && !acc->active(pixel)) continue;
           PixelSamples px = acc ? acc->samples(pixel) : PixelSamples{};
           PixelAovSums aovs = acc && acc->has_aovs() ? acc->aov_sums(pixel) : PixelAovSums{};
-          const QueryWork before = film.cost_cells.empty() ? QueryWork{} : queries.work();
+          const QueryWork before = !V.aovs || film.cost_cells.empty() ? QueryWork{} : queries.work();
           for (std::uint32_t s = first; s < first + count; ++s) {
             if (interrupt && interrupt->load(std::memory_order_relaxed)) {
               abandoned.store(true, std::memory_order_relaxed);
@@ -78,11 +81,11 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
             queries.begin_path(pixel, std::uint64_t(s));
             const auto [fx, fy] = sampler.get2D(path_dimensions::kPixel);
             FirstHit hit;
-            Vec3f L = tracer.radiance(camera.generate_ray(float(x) + fx, float(y) + fy), sampler, hit, queries);
+            Vec3f L = tracer.template radiance<V>(camera.generate_ray(float(x) + fx, float(y) + fy), sampler, hit, queries);
             if (settings.test_nonfinite && settings.test_nonfinite(pixel, s)) L.x = NAN;
             if (is_finite(L)) px.add(L);
             else ++local.nonfinite;
-            if (any_aov) {
+            if constexpr (V.aovs) {
               aovs.albedo[0] += hit.albedo.x, aovs.albedo[1] += hit.albedo.y, aovs.albedo[2] += hit.albedo.z;
               aovs.normal[0] += hit.normal.x, aovs.normal[1] += hit.normal.y, aovs.normal[2] += hit.normal.z;
               if (std::isfinite(hit.depth)) {
@@ -92,7 +95,7 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
             }
           }
           px.drawn = first + count;
-          if (!film.cost_cells.empty()) {
+          if (V.aovs && !film.cost_cells.empty()) {
             const QueryWork after = queries.work();
             aovs.cells += double(after.cells - before.cells);
             aovs.tests += double(after.tests - before.tests);
@@ -112,13 +115,15 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
       if (progress) progress(done, tile_count);
     });
   };
-  // The sampler, chosen once per frame: each kind its own loop.
+  // The sampler and the integrator, chosen once per frame: each pair its own loop.
   const auto run_pass = [&](std::uint32_t first, std::uint32_t count) {
-    switch (settings.sampler) {
-      case SamplerKind::independent: return run_pass_with.template operator()<IndependentSampler>(first, count);
-      case SamplerKind::stratified: return run_pass_with.template operator()<StratifiedSampler>(first, count);
-      case SamplerKind::sobol: return run_pass_with.template operator()<SobolSampler>(first, count);
-    }
+    with_path_variant(variant, [&]<PathVariant V>() {
+      switch (settings.sampler) {
+        case SamplerKind::independent: return run_pass_with.template operator()<IndependentSampler, V>(first, count);
+        case SamplerKind::stratified: return run_pass_with.template operator()<StratifiedSampler, V>(first, count);
+        case SamplerKind::sobol: return run_pass_with.template operator()<SobolSampler, V>(first, count);
+      }
+    });
   };
   const auto totals = [&] {
     Counters sum;
@@ -130,6 +135,7 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
   };
 
   RenderResult result;
+  result.path_variant = path_variant_name(variant);
   Counters completed;  // as of the last completed pass
   FrameState state{0, film.pixels(), 0.0};
   for (;;) {

@@ -30,6 +30,7 @@ RenderRecord render_record(const RenderOptions& options, const Scene& scene, con
       {"height", scene.height},
       {"spp", spp},
       {"sampler", options.sampler},
+      {"light_sampling", options.light_sampling},
       {"max_depth", options.max_depth},
       {"rr_depth", options.rr_depth},
       {"russian_roulette", !options.no_rr},

@@ -52,6 +52,7 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
                  {"nonfinite_samples", result.nonfinite_samples},
                  {"interrupted", result.interrupted},
                  {"abandoned_rays", result.abandoned_rays},
+                 {"path_variant", result.path_variant},
                  {"settings", settings}};
   if (nlohmann::ordered_json section = accel_section(accel, scene.triangles); !section.is_null())
     j[std::string(accel.name())] = std::move(section);

@@ -186,6 +186,20 @@ TEST(PassPlanner, ATargetIsCheckedFromEightSamplesAndStopsBelowIt) {
   EXPECT_EQ(timed.next_pass({1, 10, 0.0}), 7);
 }
 
+// kappa converge measures the film at each of its sample counts: passes end
+// exactly there, and the cap ends the render.
+TEST(PassPlanner, PassesEndAtEveryCheckpoint) {
+  Budget budget;
+  budget.spp_cap = 64;
+  budget.checkpoints = {1, 2, 4, 16, 64};
+  PassPlanner planner(budget, [] { return 0.0; });
+  std::vector<int> totals;
+  FrameState state{0, 100, 0.0};
+  while (const int count = planner.next_pass(state)) totals.push_back(state.spp += count);
+  EXPECT_EQ(totals, (std::vector<int>{1, 2, 4, 16, 64}));
+  EXPECT_EQ(planner.stop_reason(), "spp");
+}
+
 TEST(Passes, NonFiniteSamplesAreDroppedFromTheirPixelNotAveragedIn) {
   const Scene scene = cornell(16);
   RenderSettings settings;

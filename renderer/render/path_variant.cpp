@@ -1,0 +1,46 @@
+#include "renderer/render/path_variant.h"
+
+#include "renderer/util/error.h"
+
+namespace kappa {
+
+const char* light_sampling_name(LightSampling strategy) {
+  switch (strategy) {
+    case LightSampling::mis: return "mis";
+    case LightSampling::nee: return "nee";
+    case LightSampling::bsdf: return "bsdf";
+  }
+  return "?";
+}
+
+LightSampling parse_light_sampling(const std::string& name) {
+  if (name == "mis") return LightSampling::mis;
+  if (name == "nee") return LightSampling::nee;
+  if (name == "bsdf") return LightSampling::bsdf;
+  throw InputError("--light-sampling: unknown strategy '" + name + "' (expected mis, nee or bsdf)");
+}
+
+PathVariant choose_path_variant(SceneLighting scene, LightSampling strategy, bool aovs, bool specialise) {
+  PathVariant v{strategy, true, true, aovs || !specialise};
+  if (specialise) {
+    v.triangle_lights = scene.triangle_lights;
+    v.environment = scene.environment;
+  }
+  if (v.strategy == LightSampling::bsdf) v.triangle_lights = false;
+  if (!v.triangle_lights && !v.environment) v.strategy = LightSampling::bsdf;
+  return v;
+}
+
+std::string path_variant_name(const PathVariant& v) {
+  std::string name = light_sampling_name(v.strategy);
+  if (v.strategy != LightSampling::bsdf) {
+    name += ": ";
+    name += v.triangle_lights && v.environment ? "triangles + environment" : v.triangle_lights ? "triangles" : "environment";
+  } else if (v.environment) {
+    name += " + environment";
+  }
+  if (v.aovs) name += ", first hit";
+  return name;
+}
+
+}  // namespace kappa

@@ -1,0 +1,88 @@
+// The integrator a frame runs, chosen once per frame from the scene and the
+// settings (choose_path_variant) and compiled for each combination
+// (kPathVariants): a scene without emitters does no light sampling, a closed
+// scene (an environment of 0) no environment look-up, and a render without
+// AOVs records no first hit. The general variant of a strategy keeps every
+// branch behind run-time checks, as one integrator for all scenes would; it
+// renders the same image bit for bit, which the tests check, and
+// `--specialise off` selects it to measure what specialising saves.
+#pragma once
+
+#include <array>
+#include <string>
+#include <utility>
+
+namespace kappa {
+
+/// How a path gathers light at each vertex (--light-sampling).
+enum class LightSampling {
+  mis,   ///< a light sample and the BSDF sample, weighted by the power heuristic
+  nee,   ///< light samples only; BSDF-sampled rays count only emitters light sampling cannot pick
+  bsdf,  ///< BSDF-sampled rays only: no shadow rays
+};
+
+/// "mis", "nee", "bsdf".
+const char* light_sampling_name(LightSampling strategy);
+/// The strategy of a --light-sampling name; throws InputError for another.
+LightSampling parse_light_sampling(const std::string& name);
+
+/// What one compiled integrator does. With `bsdf` there are no triangle
+/// lights to sample; a scene with neither lights runs `bsdf` whatever was
+/// asked (no light to sample, so every strategy is the same estimator).
+struct PathVariant {
+  LightSampling strategy = LightSampling::mis;
+  bool triangle_lights = true;  ///< emissive triangles are sampled (next-event estimation)
+  bool environment = true;      ///< rays that escape read the environment, which is also sampled unless bsdf
+  bool aovs = true;             ///< the camera ray's first hit is recorded (albedo, normal, depth, cost AOVs)
+};
+
+/// Every variant the frames are compiled for: with AOVs and without, the
+/// strategies with lights (mis and nee: triangles, environment or both),
+/// bsdf (with and without the environment).
+inline constexpr std::array<PathVariant, 16> kPathVariants = [] {
+  std::array<PathVariant, 16> v{};
+  std::size_t i = 0;
+  for (bool aovs : {false, true}) {
+    for (LightSampling s : {LightSampling::mis, LightSampling::nee})
+      for (auto [t, e] : {std::pair{true, false}, std::pair{false, true}, std::pair{true, true}}) v[i++] = {s, t, e, aovs};
+    v[i++] = {LightSampling::bsdf, false, false, aovs};
+    v[i++] = {LightSampling::bsdf, false, true, aovs};
+  }
+  return v;
+}();
+
+/// What the scene has that a frame's integrator must handle.
+struct SceneLighting {
+  bool triangle_lights = false;  ///< emissive triangles bright enough to be lights (Lights::empty)
+  bool environment = false;      ///< a non-zero environment
+};
+
+/// The variant for a scene and the settings; `specialise` false gives the
+/// strategy's general variant (everything on, behind run-time checks).
+PathVariant choose_path_variant(SceneLighting scene, LightSampling strategy, bool aovs, bool specialise);
+
+/// "mis: triangles + environment", "bsdf", ... (the report's render.path_variant).
+std::string path_variant_name(const PathVariant& v);
+
+/// Calls f.template operator()<V>() with the compiled variant equal to `v`.
+template <class F>
+decltype(auto) with_path_variant(const PathVariant& v, F&& f) {
+  return [&]<std::size_t... I>(std::index_sequence<I...>) -> decltype(auto) {
+    using R = decltype(f.template operator()<kPathVariants[0]>());
+    if constexpr (std::is_void_v<R>) {
+      (void)((v.strategy == kPathVariants[I].strategy && v.triangle_lights == kPathVariants[I].triangle_lights &&
+              v.environment == kPathVariants[I].environment && v.aovs == kPathVariants[I].aovs &&
+              (f.template operator()<kPathVariants[I]>(), true)) ||
+             ...);
+    } else {
+      R result{};
+      (void)((v.strategy == kPathVariants[I].strategy && v.triangle_lights == kPathVariants[I].triangle_lights &&
+              v.environment == kPathVariants[I].environment && v.aovs == kPathVariants[I].aovs &&
+              (result = f.template operator()<kPathVariants[I]>(), true)) ||
+             ...);
+      return result;
+    }
+  }(std::make_index_sequence<kPathVariants.size()>{});
+}
+
+}  // namespace kappa
