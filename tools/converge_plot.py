@@ -3,6 +3,7 @@
 per setting, with the reference's own noise as a dashed floor when known.
 
     tools/converge_plot.py CONVERGE.json OUT.png
+    tools/converge_plot.py --check     (exit 0 when a plot can be made)
 
 kappa converge --plot runs it with /usr/bin/python3 (Debian's matplotlib).
 Exit 3 when matplotlib is missing (tools/setup.sh installs python3-matplotlib).
@@ -11,7 +12,9 @@ import json
 import os
 import sys
 
-if len(sys.argv) != 3:
+if len(sys.argv) == 2 and sys.argv[1] == "--check":
+    pass  # kappa converge asks, before it renders, whether a plot can be made
+elif len(sys.argv) != 3:
     sys.exit(__doc__)
 try:
     import matplotlib
@@ -20,6 +23,8 @@ try:
 except ImportError:
     print("converge_plot.py: python3-matplotlib is missing: run tools/setup.sh", file=sys.stderr)
     sys.exit(3)
+if sys.argv[1] == "--check":
+    sys.exit(0)
 
 with open(sys.argv[1]) as f:
     data = json.load(f)

@@ -100,6 +100,7 @@ CLI::App* add_converge_command(CLI::App& app, ConvergeOptions& o) {
   converge.add_option("--reference", o.reference,
                       "reference EXR (default: rendered at 16x the largest --spp with another seed, cached in "
                       "references/ beside the executable)");
+  converge.add_option("--cache", o.cache, "folder of self-made references (default: references/ beside the executable)");
   converge.add_option("--spp", o.spp, "sample counts at which the error is measured, ascending")
       ->delimiter(',')
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
@@ -109,6 +110,10 @@ CLI::App* add_converge_command(CLI::App& app, ConvergeOptions& o) {
                       "KEY=V1,V2,...: one curve per value of render's option --KEY, the others at their defaults "
                       "(several --vary keys vary one at a time)")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  converge.add_option("--equal-time", o.equal_time_s,
+                      "rank the settings by relMSE at this render time in seconds (default: the longest time every "
+                      "setting reached; past a curve's end, extrapolated as 1/time)")
+      ->check(finite_number(1e-9, 1e9));
   converge.add_option("--json", o.json, "write the curves and the ranking as JSON");
   converge.add_option("--plot", o.plot, "plot relMSE against time, log-log, to F.png (python3-matplotlib)");
   return &converge;

@@ -93,10 +93,12 @@ namespace kappa {
 struct ConvergeOptions {
   RenderOptions render;  ///< every curve's settings before its --vary (--spp, outputs and budgets unused)
   std::string reference;  ///< reference EXR; empty: a self-made one, cached
+  std::string cache;      ///< where self-made references are kept (default: references/ beside the executable)
   std::vector<int> spp = {1, 2, 4, 8, 16, 32, 64, 128, 256};  ///< where the error is measured
   std::vector<std::string> vary;  ///< KEY=V1,V2,...
   std::string json;  ///< the curves and the ranking
   std::string plot;  ///< a PNG made by tools/converge_plot.py
+  double equal_time_s = 0;  ///< rank at this render time (0: the longest time every setting reached)
 };
 
 }  // namespace kappa

@@ -19,6 +19,9 @@ std::uint64_t parse_cell_sample(const std::string& text) {
 }
 
 RenderSettings render_settings_of(const RenderOptions& options, const AovSelection& aov) {
+#ifdef KAPPA_NO_STATS
+  if (options.stats == "on") throw InputError("--stats on: this kappa was built without statistics (-DKAPPA_STATS=OFF)");
+#endif
   RenderSettings settings;
   settings.spp = options.spp;
   settings.max_depth = options.max_depth;

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -90,7 +91,7 @@ std::uint64_t fnv1a(const std::string& text) {
   return h;
 }
 
-std::filesystem::path executable_dir() {
+std::filesystem::path executable_dir() {  // the default cache's parent
   std::error_code ec;
   const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   return ec ? std::filesystem::path(".") : exe.parent_path();
@@ -116,10 +117,28 @@ RenderResult render_once(const Scene& scene, const RenderOptions& options, int s
   return render(scene, *accel, settings, film, [&bar](std::size_t done, std::size_t total) { bar.update(done, total); });
 }
 
-/// The reference: --reference, or one rendered at 16x the largest spp with
-/// another seed, cached beside the executable under a key of everything that
+/// What identifies this binary's images: its version, and for a build from an
+/// edited tree ("-dirty") the executable's size and time too, so that a
+/// changed integrator does not reuse an older reference.
+std::string binary_identity() {
+  std::string id = version_string();
+  if (id.find("dirty") != std::string::npos) {
+    std::error_code ec;
+    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+      const auto size = std::filesystem::file_size(exe, ec);
+      const auto time = std::filesystem::last_write_time(exe, ec).time_since_epoch().count();
+      id += "|" + std::to_string(size) + "|" + std::to_string(time);
+    }
+  }
+  return id;
+}
+
+/// The reference: --reference, or one rendered at 16x the largest spp with a
+/// seed no curve uses, cached (--cache) under a key of everything that
 /// changes it.
-Reference reference_for(const ConvergeOptions& options, const Scene& scene, bool show_progress) {
+Reference reference_for(const ConvergeOptions& options, const std::vector<Setting>& settings, const Scene& scene,
+                        bool show_progress) {
   Reference ref;
   if (!options.reference.empty()) {
     ref.image = read_reference(options.reference);
@@ -128,15 +147,21 @@ Reference reference_for(const ConvergeOptions& options, const Scene& scene, bool
     const RenderOptions& base = options.render;
     ref.self_made = true;
     ref.spp = 16 * options.spp.back();
-    ref.seed = base.seed == kMaxSeed ? 0 : base.seed + 1;
+    ref.seed = base.seed;
+    const auto used = [&](std::uint64_t seed) {
+      for (const Setting& s : settings)
+        if (s.options.seed == seed) return true;
+      return base.seed == seed;
+    };
+    while (used(ref.seed)) ref.seed = ref.seed == kMaxSeed ? 0 : ref.seed + 1;
     RenderOptions o = base;
     o.seed = ref.seed;
     o.stats = "off";
     std::ostringstream key;
     key << input_hash(scene) << '|' << scene.width << 'x' << scene.height << '|' << ref.spp << '|' << ref.seed << '|'
         << o.accel << '|' << o.sampler << '|' << o.light_sampling << '|' << o.max_depth << '|'
-        << (o.no_rr ? -1 : o.rr_depth) << '|' << version_string();
-    const std::filesystem::path dir = executable_dir() / "references";
+        << (o.no_rr ? -1 : o.rr_depth) << '|' << binary_identity();
+    const std::filesystem::path dir = options.cache.empty() ? executable_dir() / "references" : std::filesystem::path(options.cache);
     const std::filesystem::path file = dir / (scene.name + "-" + hex64(fnv1a(key.str())) + ".exr");
     ref.path = file.string();
     std::error_code ec;
@@ -265,21 +290,24 @@ std::string ranking_table(const std::vector<ConvergeCurve>& curves, const std::v
 }
 
 /// Runs tools/converge_plot.py with /usr/bin/python3 (where Debian's
-/// matplotlib lives), writing `png`.
-void plot(const std::filesystem::path& json, const std::filesystem::path& png) {
+/// matplotlib lives) with `args`: --check before any rendering (is it all
+/// there?), then JSON PNG.
+void run_plot_script(const std::vector<std::string>& args) {
   const std::string script = std::string(KAPPA_TOOLS_DIR) + "/converge_plot.py";
   std::error_code ec;
   if (!std::filesystem::is_regular_file(script, ec)) throw InputError("--plot: " + script + " not found");
+  std::vector<const char*> argv = {"/usr/bin/python3", script.c_str()};
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  argv.push_back(nullptr);
   const pid_t pid = fork();
-  if (pid < 0) throw InputError("--plot: cannot start /usr/bin/python3");
+  if (pid < 0) throw std::runtime_error("--plot: cannot start /usr/bin/python3: fork failed");
   if (pid == 0) {
-    const char* argv[] = {"/usr/bin/python3", script.c_str(), json.c_str(), png.c_str(), nullptr};
-    execv(argv[0], const_cast<char* const*>(argv));
+    execv(argv[0], const_cast<char* const*>(argv.data()));
     _exit(127);
   }
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-  }
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) throw std::runtime_error("--plot: lost track of /usr/bin/python3");
   const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   if (code == 127) throw InputError("--plot: /usr/bin/python3 is missing (run tools/setup.sh)");
   if (code == 3) throw InputError("--plot: python3-matplotlib is missing for /usr/bin/python3 (run tools/setup.sh)");
@@ -317,15 +345,18 @@ int run_converge(const ConvergeOptions& options) {
   refuse_outputs_over_inputs({options.json, options.plot}, inputs);
   const auto json_out = optional_output(options.json);
   const auto plot_out = optional_output(options.plot, OutputKind::image);
-  // The plot script reads the JSON: from --json's temporary, or its own.
+  // The plot script reads the JSON: from --json's temporary, or its own
+  // (also when --json is a device or FIFO, which it could not read back).
   std::unique_ptr<AtomicOutput> plot_json;
-  if (plot_out && !json_out) plot_json = std::make_unique<AtomicOutput>(plot_out->temp_path().string() + ".json");
+  if (plot_out && (!json_out || json_out->direct()))
+    plot_json = std::make_unique<AtomicOutput>(plot_out->temp_path().string() + ".json");
+  if (plot_out) run_plot_script({"--check"});  // a missing matplotlib fails now, not after the renders
 
-  const Reference ref = reference_for(options, scene, show_progress);
+  const Reference ref = reference_for(options, settings, scene, show_progress);
   std::vector<ConvergeCurve> curves;
   for (const Setting& s : settings) curves.push_back(curve_of(s, scene, spp, ref, base.quiet));
 
-  const double t = equal_time(curves);
+  const double t = options.equal_time_s > 0 ? options.equal_time_s : equal_time(curves);
   std::vector<std::size_t> order(curves.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
@@ -359,7 +390,8 @@ int run_converge(const ConvergeOptions& options) {
 
   if (json_out) write_temporary(*json_out, text);
   if (plot_json) write_temporary(*plot_json, text);
-  if (plot_out) plot(json_out ? json_out->temp_path() : plot_json->temp_path(), plot_out->temp_path());
+  if (plot_out)
+    run_plot_script({(plot_json ? plot_json->temp_path() : json_out->temp_path()).string(), plot_out->temp_path().string()});
   {
     const SignalsHeld held;
     if (json_out) json_out->commit();
@@ -369,7 +401,8 @@ int run_converge(const ConvergeOptions& options) {
   std::printf("converge: %s %dx%d, %d thread(s); reference %s%s\n", scene.name.c_str(), scene.width, scene.height,
               j["threads"].get<int>(), ref.path.c_str(), ref.self_made ? " (self-made)" : "");
   if (ref.relmse_floor >= 0) std::printf("the reference's own noise adds about %.3g to every relMSE\n", ref.relmse_floor);
-  std::printf("ranked by relMSE at %.3f s, the longest time every setting reached (* extrapolated as 1/time):\n", t);
+  std::printf("ranked by relMSE at %.3f s, %s (* extrapolated as 1/time):\n", t,
+              options.equal_time_s > 0 ? "as asked" : "the longest time every setting reached");
   std::fputs(ranking_table(curves, order, t).c_str(), stdout);
   return 0;
 }

@@ -39,11 +39,14 @@ Lights::Lights(const Scene& scene) {
   }
   double running = 0;
   for (double p : power) {
-    m_pmf.push_back(float(p / total));
     running += p / total;
     m_cdf.push_back(running);
   }
   m_cdf.back() = 1.0;
+  // Each light's probability is its step of the cdf choose() reads, so a
+  // light has pmf 0 exactly when choose() can never pick it (nee then counts
+  // it where BSDF sampling finds it instead).
+  for (std::size_t i = 0; i < m_cdf.size(); ++i) m_pmf.push_back(float(m_cdf[i] - (i > 0 ? m_cdf[i - 1] : 0.0)));
   m_pmf_environment = m_pmf.back();
   if (!m_triangles.empty()) {
     m_pmf_of_triangle.assign(scene.triangles.size(), 0.0f);

@@ -36,7 +36,7 @@ class PathTracer {
 
   /// What the scene has to light it, for choose_path_variant.
   SceneLighting lighting() const {
-    return {m_lights.triangle_count() > 0, !(m_scene.environment == Vec3f{0, 0, 0})};
+    return {m_lights.triangle_count() > 0, !(m_scene.environment == Vec3f{0, 0, 0}), m_lights.pmf_environment() > 0.0f};
   }
 
   /// Radiance arriving along `ray`, asking every visibility query through

@@ -22,12 +22,12 @@ LightSampling parse_light_sampling(const std::string& name) {
 
 PathVariant choose_path_variant(SceneLighting scene, LightSampling strategy, bool aovs, bool specialise) {
   PathVariant v{strategy, true, true, aovs || !specialise};
-  if (specialise) {
-    v.triangle_lights = scene.triangle_lights;
-    v.environment = scene.environment;
-  }
   if (v.strategy == LightSampling::bsdf) v.triangle_lights = false;
-  if (!v.triangle_lights && !v.environment) v.strategy = LightSampling::bsdf;
+  if (!specialise) return v;
+  if (v.strategy != LightSampling::bsdf) v.triangle_lights = scene.triangle_lights;
+  v.environment = scene.environment;
+  // Nothing light sampling could pick: BSDF sampling alone, the same estimator.
+  if (!v.triangle_lights && !(v.environment && scene.environment_light)) v.strategy = LightSampling::bsdf;
   return v;
 }
 

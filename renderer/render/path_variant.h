@@ -12,6 +12,8 @@
 #include <string>
 #include <utility>
 
+#include "accel/check.h"
+
 namespace kappa {
 
 /// How a path gathers light at each vertex (--light-sampling).
@@ -53,8 +55,9 @@ inline constexpr std::array<PathVariant, 16> kPathVariants = [] {
 
 /// What the scene has that a frame's integrator must handle.
 struct SceneLighting {
-  bool triangle_lights = false;  ///< emissive triangles bright enough to be lights (Lights::empty)
-  bool environment = false;      ///< a non-zero environment
+  bool triangle_lights = false;    ///< emissive triangles bright enough to be lights (Lights::triangle_count)
+  bool environment = false;        ///< a non-zero environment
+  bool environment_light = false;  ///< one light sampling can pick (its power does not round to 0)
 };
 
 /// The variant for a scene and the settings; `specialise` false gives the
@@ -65,24 +68,17 @@ PathVariant choose_path_variant(SceneLighting scene, LightSampling strategy, boo
 std::string path_variant_name(const PathVariant& v);
 
 /// Calls f.template operator()<V>() with the compiled variant equal to `v`.
+/// choose_path_variant gives only compiled variants; any other is a bug
+/// (KAPPA_CHECK), never a frame silently left black.
 template <class F>
-decltype(auto) with_path_variant(const PathVariant& v, F&& f) {
-  return [&]<std::size_t... I>(std::index_sequence<I...>) -> decltype(auto) {
-    using R = decltype(f.template operator()<kPathVariants[0]>());
-    if constexpr (std::is_void_v<R>) {
-      (void)((v.strategy == kPathVariants[I].strategy && v.triangle_lights == kPathVariants[I].triangle_lights &&
-              v.environment == kPathVariants[I].environment && v.aovs == kPathVariants[I].aovs &&
-              (f.template operator()<kPathVariants[I]>(), true)) ||
-             ...);
-    } else {
-      R result{};
-      (void)((v.strategy == kPathVariants[I].strategy && v.triangle_lights == kPathVariants[I].triangle_lights &&
-              v.environment == kPathVariants[I].environment && v.aovs == kPathVariants[I].aovs &&
-              (result = f.template operator()<kPathVariants[I]>(), true)) ||
-             ...);
-      return result;
-    }
+void with_path_variant(const PathVariant& v, F&& f) {
+  const bool ran = [&]<std::size_t... I>(std::index_sequence<I...>) {
+    return ((v.strategy == kPathVariants[I].strategy && v.triangle_lights == kPathVariants[I].triangle_lights &&
+             v.environment == kPathVariants[I].environment && v.aovs == kPathVariants[I].aovs &&
+             (f.template operator()<kPathVariants[I]>(), true)) ||
+            ...);
   }(std::make_index_sequence<kPathVariants.size()>{});
+  KAPPA_CHECK(ran);
 }
 
 }  // namespace kappa

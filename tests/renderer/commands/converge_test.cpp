@@ -2,7 +2,6 @@
 // --spp image against the reference, the self-made reference cached and
 // flagged, bad input refused with exit 2.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -20,7 +19,8 @@ std::string cornell() { return (test::assets_dir() / "cornell-box" / "scene.json
 TEST(Converge, EveryVaryValueIsACurveWithAPointAtEverySpp) {
   test::TempDir tmp;
   const auto r = run_kappa({"converge", cornell(), "--width", "24", "--height", "24", "--spp", "1,2,4", "--vary",
-                            "sampler=independent,sobol,stratified", "--vary", "light-sampling=nee,bsdf", "--json",
+                            "sampler=independent,sobol,stratified", "--vary", "light-sampling=nee,bsdf",
+                            "--equal-time", "0.25", "--cache", (tmp / "cache").string(), "--json",
                             (tmp / "c.json").string(), "--quiet"});
   ASSERT_EQ(r.exit_code, 0) << r.std_err;
   const auto j = nlohmann::json::parse(test::read_file(tmp / "c.json"));
@@ -29,6 +29,7 @@ TEST(Converge, EveryVaryValueIsACurveWithAPointAtEverySpp) {
   EXPECT_EQ(j.at("settings")[4].at("name"), "light-sampling=bsdf");
   EXPECT_EQ(j.at("settings")[4].at("path_variant"), "bsdf");
   EXPECT_EQ(j.at("ranking").size(), 5u);
+  EXPECT_EQ(j.at("equal_time_s"), 0.25);
   EXPECT_TRUE(j.at("reference").at("self_made").get<bool>());
   EXPECT_EQ(j.at("reference").at("spp"), 64);  // 16 x the largest --spp
   for (const auto& s : j.at("settings")) {
@@ -40,7 +41,9 @@ TEST(Converge, EveryVaryValueIsACurveWithAPointAtEverySpp) {
       EXPECT_GT(p.at("relmse").get<double>(), 0);
       // One progressive render: time grows with the samples (stratified
       // renders each count on its own, so a busy machine may reorder them).
-      if (s.at("name") != "sampler=stratified") EXPECT_GE(p.at("time_s").get<double>(), last_time);
+      if (s.at("name") != "sampler=stratified") {
+        EXPECT_GE(p.at("time_s").get<double>(), last_time);
+      }
       last_time = p.at("time_s").get<double>();
     }
   }
@@ -78,29 +81,30 @@ TEST(Converge, APointIsTheErrorOfTheSppImage) {
 }
 
 TEST(Converge, ASelfMadeReferenceIsCachedAndSaysItCannotRevealKappasBias) {
-  // A seed no other run uses, so the first run must render the reference.
-  const std::string seed = std::to_string(1000000 + getpid());
+  test::TempDir tmp;
+  // Curves at seeds 0 and 1: the reference takes the next seed no curve uses.
   const std::vector<std::string> args = {"converge", cornell(), "--width", "16", "--height", "16", "--spp", "1,2",
-                                         "--seed", seed, "--quiet"};
+                                         "--vary", "seed=0,1", "--cache", (tmp / "cache").string(), "--json",
+                                         (tmp / "c.json").string(), "--quiet"};
   const auto first = run_kappa(args);
   ASSERT_EQ(first.exit_code, 0) << first.std_err;
   EXPECT_NE(first.std_err.find("rendering the reference"), std::string::npos) << first.std_err;
   EXPECT_NE(first.std_err.find("cannot reveal Kappa's own bias"), std::string::npos) << first.std_err;
+  EXPECT_EQ(nlohmann::json::parse(test::read_file(tmp / "c.json")).at("reference").at("seed"), 2);
+  std::size_t cached = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(tmp / "cache")) ++cached;
+  EXPECT_EQ(cached, 1u);
   const auto second = run_kappa(args);
   ASSERT_EQ(second.exit_code, 0) << second.std_err;
   EXPECT_EQ(second.std_err.find("rendering the reference"), std::string::npos) << second.std_err;
   EXPECT_NE(second.std_err.find("cannot reveal Kappa's own bias"), std::string::npos);
-  // Remove the cached file this test made.
-  const std::size_t at = second.std_err.find("reference /");
-  ASSERT_NE(at, std::string::npos);
-  const std::string path = second.std_err.substr(at + 10, second.std_err.find(".exr", at) + 4 - (at + 10));
-  EXPECT_TRUE(std::filesystem::remove(path)) << path;
 }
 
 TEST(Converge, BadInputIsRefusedWithExit2) {
   test::TempDir tmp;
   const auto refused = [&](std::vector<std::string> extra, const std::string& says) {
-    std::vector<std::string> args = {"converge", cornell(), "--width", "8", "--height", "8", "--spp", "1,2", "--quiet"};
+    std::vector<std::string> args = {"converge", cornell(), "--width", "8", "--height", "8", "--spp", "1,2",
+                                     "--cache", (tmp / "cache").string(), "--quiet"};
     args.insert(args.end(), extra.begin(), extra.end());
     const auto r = run_kappa(args);
     EXPECT_EQ(r.exit_code, 2) << r.std_err;
@@ -127,14 +131,15 @@ TEST(Converge, PlotWritesAPng) {
     GTEST_SKIP() << "python3-matplotlib is not installed for /usr/bin/python3 (tools/setup.sh installs it)";
   test::TempDir tmp;
   const auto r = run_kappa({"converge", cornell(), "--width", "8", "--height", "8", "--spp", "1,2", "--vary",
-                            "sampler=independent,sobol", "--plot", (tmp / "p.png").string(), "--quiet"});
+                            "sampler=independent,sobol", "--cache", (tmp / "cache").string(), "--plot",
+                            (tmp / "p.png").string(), "--quiet"});
   ASSERT_EQ(r.exit_code, 0) << r.std_err;
   const std::string png = test::read_file(tmp / "p.png");
   EXPECT_EQ(png.substr(1, 3), "PNG");
-  // Only the plot: its JSON was a temporary.
+  // Only the plot (and the cache): its JSON was a temporary.
   std::size_t files = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(tmp.path())) ++files;
-  EXPECT_EQ(files, 1u);
+  EXPECT_EQ(files, 2u);
 }
 
 }  // namespace

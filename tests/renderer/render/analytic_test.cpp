@@ -194,17 +194,23 @@ TEST(Analytic, EmitterTooDimToBeALightStillShinesThroughBsdfSampling) {
   const Lights lights(s);
   ASSERT_EQ(lights.pmf_of_triangle(2), 0.0f);  // too dim to be a light
   ASSERT_GT(lights.pmf_of_triangle(4), 0.0f);
-  RenderSettings settings;
-  settings.spp = 16;
-  const Film film = test::render_scene(s, settings);
-  double sum = 0;
-  for (float v : film.rgb) {
-    ASSERT_TRUE(std::isfinite(v));
-    sum += v;
+  // Under nee too, whose BSDF-sampled rays count only the emitters light
+  // sampling cannot pick (this one), and under bsdf.
+  for (LightSampling strategy : {LightSampling::mis, LightSampling::nee, LightSampling::bsdf}) {
+    SCOPED_TRACE(light_sampling_name(strategy));
+    RenderSettings settings;
+    settings.spp = 16;
+    settings.light_sampling = strategy;
+    const Film film = test::render_scene(s, settings);
+    double sum = 0;
+    for (float v : film.rgb) {
+      ASSERT_TRUE(std::isfinite(v));
+      sum += v;
+    }
+    const double mean = sum / double(film.rgb.size());
+    EXPECT_GT(mean, 0.5e-30 * 0.9);  // it shines
+    EXPECT_LT(mean, 0.5e-30 * 1.0);
   }
-  const double mean = sum / double(film.rgb.size());
-  EXPECT_GT(mean, 0.5e-30 * 0.9);  // it shines
-  EXPECT_LT(mean, 0.5e-30 * 1.0);
 }
 
 /// The part of a floor point's cosine-weighted hemisphere that a square of

@@ -21,24 +21,28 @@ TEST(PathVariant, TheSceneDecidesWhichLightsAreSampled) {
   const auto name = [](SceneLighting l, LightSampling s, bool aovs = false, bool specialise = true) {
     return path_variant_name(choose_path_variant(l, s, aovs, specialise));
   };
-  EXPECT_EQ(name({true, false}, LightSampling::mis), "mis: triangles");  // the Cornell box
-  EXPECT_EQ(name({false, true}, LightSampling::mis), "mis: environment");
-  EXPECT_EQ(name({true, true}, LightSampling::nee), "nee: triangles + environment");
-  EXPECT_EQ(name({true, true}, LightSampling::bsdf), "bsdf + environment");
-  EXPECT_EQ(name({true, false}, LightSampling::bsdf), "bsdf");
+  EXPECT_EQ(name({true, false, false}, LightSampling::mis), "mis: triangles");  // the Cornell box
+  EXPECT_EQ(name({false, true, true}, LightSampling::mis), "mis: environment");
+  EXPECT_EQ(name({true, true, true}, LightSampling::nee), "nee: triangles + environment");
+  EXPECT_EQ(name({true, true, true}, LightSampling::bsdf), "bsdf + environment");
+  EXPECT_EQ(name({true, false, false}, LightSampling::bsdf), "bsdf");
   // No light at all: nothing to sample, whatever was asked.
-  EXPECT_EQ(name({false, false}, LightSampling::mis), "bsdf");
-  EXPECT_EQ(name({false, false}, LightSampling::nee, true), "bsdf, first hit");
+  EXPECT_EQ(name({false, false, false}, LightSampling::mis), "bsdf");
+  EXPECT_EQ(name({false, false, false}, LightSampling::nee, true), "bsdf, first hit");
+  // An environment too dim for its power to register (its luminance rounds to
+  // 0 in float) is looked up but cannot be sampled.
+  EXPECT_EQ(name({false, true, false}, LightSampling::mis), "bsdf + environment");
+  EXPECT_EQ(name({true, true, false}, LightSampling::mis), "mis: triangles + environment");
   // The general variant of each strategy: everything on.
-  EXPECT_EQ(name({true, false}, LightSampling::mis, false, false), "mis: triangles + environment, first hit");
-  EXPECT_EQ(name({false, false}, LightSampling::bsdf, false, false), "bsdf + environment, first hit");
+  EXPECT_EQ(name({true, false, false}, LightSampling::mis, false, false), "mis: triangles + environment, first hit");
+  EXPECT_EQ(name({false, false, false}, LightSampling::bsdf, false, false), "bsdf + environment, first hit");
   // Every variant chosen is one the frames are compiled for.
   for (bool t : {false, true})
     for (bool e : {false, true})
       for (LightSampling s : {LightSampling::mis, LightSampling::nee, LightSampling::bsdf})
         for (bool aovs : {false, true})
           for (bool specialise : {false, true}) {
-            const PathVariant v = choose_path_variant({t, e}, s, aovs, specialise);
+            const PathVariant v = choose_path_variant({t, e, e}, s, aovs, specialise);
             int compiled = 0;
             with_path_variant(v, [&]<PathVariant V>() { ++compiled; });
             EXPECT_EQ(compiled, 1) << path_variant_name(v);
@@ -79,7 +83,7 @@ TEST(PathVariant, EverySpecialisedVariantRendersTheGeneralImage) {
   int variants_seen = 0;
   for (const auto& [label, scene] : scenes)
     for (LightSampling strategy : {LightSampling::mis, LightSampling::nee, LightSampling::bsdf})
-      for (SamplerKind sampler : {SamplerKind::independent, SamplerKind::sobol})
+      for (SamplerKind sampler : {SamplerKind::independent, SamplerKind::stratified, SamplerKind::sobol})
         for (bool aovs : {false, true}) {
           RenderSettings settings;
           settings.spp = 4;
@@ -96,7 +100,7 @@ TEST(PathVariant, EverySpecialisedVariantRendersTheGeneralImage) {
           EXPECT_TRUE(bitwise_equal(specialised.depth, general.depth));
           ++variants_seen;
         }
-  EXPECT_EQ(variants_seen, 5 * 3 * 2 * 2);
+  EXPECT_EQ(variants_seen, 5 * 3 * 3 * 2);
 }
 
 // The report names the variant that ran.
