@@ -29,12 +29,21 @@ if sys.argv[1] == "--check":
 with open(sys.argv[1]) as f:
     data = json.load(f)
 
-fig, ax = plt.subplots(figsize=(7, 5), dpi=120)
-for setting in data["settings"]:
+fig, ax = plt.subplots(figsize=(8.5, 5), dpi=120)
+# One line style per option varied, one colour per curve: a dozen curves stay
+# apart where matplotlib's ten colours would repeat.
+styles = ["-", "--", "-.", ":"]
+keys = []
+colours = plt.get_cmap("tab20").colors
+for i, setting in enumerate(data["settings"]):
+    key = setting.get("key") or ""
+    if key not in keys:
+        keys.append(key)
     points = setting["points"]
     times = [p["time_s"] for p in points]
     errors = [p["relmse"] for p in points]
-    line, = ax.loglog(times, errors, marker="o", markersize=3, label=setting["name"])
+    line, = ax.loglog(times, errors, marker="o", markersize=3, label=setting["name"],
+                      linestyle=styles[keys.index(key) % len(styles)], color=colours[i % len(colours)])
     # The last point's samples per pixel, to read cost per sample off the plot.
     ax.annotate(f'{points[-1]["spp"]} spp', (times[-1], errors[-1]), textcoords="offset points", xytext=(4, 2),
                 fontsize=7, color=line.get_color())
@@ -50,6 +59,6 @@ ax.set_title(f'{data["scene_name"]} {data["width"]}x{data["height"]}, {data["thr
 ax.set_xlabel("render time (s)")
 ax.set_ylabel("relMSE  (mean of (x - ref)² / (ref² + 0.01))")
 ax.grid(True, which="both", linewidth=0.3)
-ax.legend(fontsize=8)
+ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
 fig.tight_layout()
 fig.savefig(sys.argv[2], format="png")

@@ -31,9 +31,9 @@ struct PassControl {
 struct RenderSettings {
   int spp = 16;
   int max_depth = 32;       ///< bounces after the camera ray; 1 = direct lighting only
-  int rr_depth = 3;         ///< Russian roulette from this many bounces on; < 0 disables it
+  int rr_depth = 5;         ///< Russian roulette from this many bounces on; < 0 disables it (render's default)
   std::uint64_t seed = 0;
-  SamplerKind sampler = SamplerKind::independent;  ///< samplers.h; stratified needs spp, so no budget
+  SamplerKind sampler = SamplerKind::sobol;  ///< samplers.h (render's default); stratified needs spp, so no budget
   LightSampling light_sampling = LightSampling::mis;  ///< path_variant.h
   /// The integrator compiled for what the scene has (false: the general one,
   /// the same image, to measure what specialising saves).
