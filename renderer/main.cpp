@@ -12,6 +12,10 @@ int main(int argc, char** argv) {
   // A report written to a pipe whose reader went away fails its write
   // (exit 1) instead of killing the process.
   std::signal(SIGPIPE, SIG_IGN);
+  // A write past the file-size limit (RLIMIT_FSIZE) fails with EFBIG and is
+  // reported, its temporary removed, instead of killing the process and
+  // leaving the temporary behind.
+  std::signal(SIGXFSZ, SIG_IGN);
   kappa::Command command;
   if (const auto exit_code = kappa::parse_command_line(argc, argv, command)) return *exit_code;
   return kappa::exit_code_of([&] {

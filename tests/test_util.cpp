@@ -41,10 +41,15 @@ std::string shell_quote(const std::string& s) {
 }
 }  // namespace
 
-RunResult run_kappa(const std::vector<std::string>& args, const std::filesystem::path& working_dir, int timeout_s) {
+namespace {
+
+RunResult run_command(const std::vector<std::string>& wrapper, const std::vector<std::string>& args,
+                      const std::filesystem::path& working_dir, int timeout_s) {
   TempDir tmp;
   // With a timeout, a run that hangs ends with exit code 124 (coreutils' timeout).
-  std::string cmd = (timeout_s > 0 ? "timeout " + std::to_string(timeout_s) + " " : std::string()) + shell_quote(KAPPA_BINARY);
+  std::string cmd = timeout_s > 0 ? "timeout " + std::to_string(timeout_s) + " " : std::string();
+  for (const auto& w : wrapper) cmd += shell_quote(w) + " ";
+  cmd += shell_quote(KAPPA_BINARY);
   for (const auto& a : args) cmd += " " + shell_quote(a);
   // In a subshell, so that a failing cd reports into the captured stderr too.
   if (!working_dir.empty()) cmd = "(cd " + shell_quote(working_dir.string()) + " && exec " + cmd + ")";
@@ -55,6 +60,16 @@ RunResult run_kappa(const std::vector<std::string>& args, const std::filesystem:
   r.std_err = read_file(tmp / "stderr");
   r.std_out = read_file(tmp / "stdout");
   return r;
+}
+
+}  // namespace
+
+RunResult run_kappa(const std::vector<std::string>& args, const std::filesystem::path& working_dir, int timeout_s) {
+  return run_command({}, args, working_dir, timeout_s);
+}
+
+RunResult run_kappa_under(const std::vector<std::string>& wrapper, const std::vector<std::string>& args) {
+  return run_command(wrapper, args, {}, 0);
 }
 
 std::string read_file(const std::filesystem::path& p) {

@@ -46,6 +46,10 @@ struct RunResult {
 RunResult run_kappa(const std::vector<std::string>& args, const std::filesystem::path& working_dir = {},
                     int timeout_s = 0);
 
+/// run_kappa under a wrapper command, e.g. {"prlimit", "--fsize=4096", "--"}
+/// or {"setpriv", "--reuid=65534", ...}: kappa is exec'd by it.
+RunResult run_kappa_under(const std::vector<std::string>& wrapper, const std::vector<std::string>& args);
+
 std::string read_file(const std::filesystem::path& p);
 void write_file(const std::filesystem::path& p, const std::string& text);
 

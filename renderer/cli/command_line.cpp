@@ -255,6 +255,9 @@ int exit_code_of(const std::function<int()>& run) {
   } catch (const InputError& e) {
     std::fprintf(stderr, "kappa: error: %s\n", printable_line(e.what()).c_str());
     return 2;
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "kappa: error: %s\n", printable_line(e.what()).c_str());
+    return 1;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "kappa: error: out of memory\n");
     return 1;

@@ -255,7 +255,7 @@ int run_render(const RenderOptions& options) {
                                    {"kappa:render_time_s", result.seconds},
                                    {"kappa:accel_build_s", build_s},
                                    {"kappa:rays", double(result.rays)}});
-  write_exr(output.temp_path(), film, metadata);
+  write_exr(output.temp_path(), film, metadata, output.target());
   const nlohmann::ordered_json report =
       render_report(scene, *accel,
                     FrameFacts{scene.width, scene.height, result.spp, threads, options.seed, budget.time_s,

@@ -99,7 +99,12 @@ AtomicOutput::AtomicOutput(const std::filesystem::path& target, OutputKind kind)
       break;
   }
   const std::filesystem::path dir = m_target.parent_path().empty() ? "." : m_target.parent_path();
-  if (!std::filesystem::is_directory(dir, ec)) fail(target, 0, "cannot write: folder '" + dir.string() + "' does not exist");
+  if (!std::filesystem::is_directory(dir, ec)) {
+    // A folder that cannot be looked into (EACCES) is not one that is missing.
+    if (ec && ec != std::errc::no_such_file_or_directory)
+      fail(target, 0, "cannot write: folder '" + dir.string() + "': " + ec.message());
+    fail(target, 0, "cannot write: folder '" + dir.string() + "' does not exist");
+  }
   // Same folder as the target, so the final rename cannot cross file systems;
   // the .exr ending keeps format detection by extension working.
   m_temp = dir / ("." + m_target.filename().string() + ".kappa-" + std::to_string(::getpid()) + ".tmp" +
@@ -149,8 +154,9 @@ void write_temporary(AtomicOutput& output, const std::string& text) {
     if (!out) {
       // A device or pipe that fails mid-way (a reader that went away) is not
       // the input's fault: an internal error, exit 1.
-      if (output.direct()) throw std::runtime_error(output.target().string() + ": cannot write (" + std::strerror(errno) + ")");
-      fail(output.target(), 0, "cannot write");
+      const int err = errno;
+      if (output.direct()) throw std::runtime_error(output.target().string() + ": cannot write (" + std::strerror(err) + ")");
+      fail_output(output.target(), "cannot write", err);
     }
   }
 }
@@ -163,8 +169,7 @@ void AtomicOutput::commit() {
     ::fsync(fd);
     ::close(fd);
   }
-  if (std::rename(m_temp.c_str(), m_target.c_str()) != 0)
-    fail(m_target, 0, std::string("cannot replace: ") + std::strerror(errno));
+  if (std::rename(m_temp.c_str(), m_target.c_str()) != 0) fail_output(m_target, "cannot replace", errno);
   m_committed = true;
 }
 

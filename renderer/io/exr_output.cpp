@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <type_traits>
 
 #include "renderer/util/error.h"
@@ -20,7 +21,15 @@ std::vector<std::string> exr_channel_names(const Film& film) {
   return names;
 }
 
-void write_exr(const std::filesystem::path& path, const Film& film, const Metadata& metadata) {
+void write_exr(const std::filesystem::path& path, const Film& film, const Metadata& metadata,
+               const std::filesystem::path& shown) {
+  const std::filesystem::path& name = shown.empty() ? path : shown;
+  // OpenEXR reports a failed write in its own words; errno still holds the
+  // system's reason (EFBIG, ENOSPC, EIO).
+  const auto failed = [&](const std::string& what) {
+    const int err = errno;
+    fail_output(name, "cannot write EXR (" + what + ")", err);
+  };
   const std::vector<std::string> names = exr_channel_names(film);
   const std::size_t nc = names.size();
   std::vector<float> pixels(film.pixels() * nc);
@@ -58,9 +67,10 @@ void write_exr(const std::filesystem::path& path, const Film& film, const Metada
 
   auto out = OIIO::ImageOutput::create("openexr");
   if (!out) fail(path, 0, "OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
-  if (!out->open(path.string(), spec)) fail(path, 0, "cannot write EXR: " + out->geterror());
-  if (!out->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) fail(path, 0, "cannot write EXR: " + out->geterror());
-  if (!out->close()) fail(path, 0, "cannot write EXR: " + out->geterror());
+  errno = 0;
+  if (!out->open(path.string(), spec)) failed(out->geterror());
+  if (!out->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) failed(out->geterror());
+  if (!out->close()) failed(out->geterror());
 }
 
 }  // namespace kappa

@@ -21,7 +21,9 @@ using Metadata = std::vector<std::pair<std::string, MetadataValue>>;
 std::vector<std::string> exr_channel_names(const Film& film);
 
 /// Writes `film` to `path` directly (callers wanting atomicity pass the
-/// temporary of an AtomicOutput). Throws InputError on failure.
-void write_exr(const std::filesystem::path& path, const Film& film, const Metadata& metadata);
+/// temporary of an AtomicOutput, and its target as `shown`, the name errors
+/// give). Throws OutputError on failure, with the system's reason.
+void write_exr(const std::filesystem::path& path, const Film& film, const Metadata& metadata,
+               const std::filesystem::path& shown = {});
 
 }  // namespace kappa

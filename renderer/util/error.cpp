@@ -1,7 +1,7 @@
 #include "renderer/util/error.h"
 
 #include <cstdio>
-
+#include <cstring>
 
 namespace kappa {
 
@@ -11,6 +11,10 @@ std::string located(const std::filesystem::path& file, std::size_t line, const s
   if (line > 0) s.append(":").append(std::to_string(line));
   s.append(": ").append(message);
   return s;
+}
+
+void fail_output(const std::filesystem::path& file, const std::string& message, int err) {
+  throw OutputError(located(file, 0, err != 0 ? message + ": " + std::strerror(err) : message));
 }
 
 void fail(const std::filesystem::path& file, std::size_t line, const std::string& message) {

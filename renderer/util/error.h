@@ -19,6 +19,18 @@ std::string located(const std::filesystem::path& file, std::size_t line, const s
 
 [[noreturn]] void fail(const std::filesystem::path& file, std::size_t line, const std::string& message);
 
+/// An output that could not be written once the work was done (a full disk,
+/// a file-size limit): not the input's fault, so exit 1, but one line naming
+/// the output and the system's reason, as for bad input.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Throws OutputError "file: message: <strerror(err)>" (without the reason
+/// when err is 0).
+[[noreturn]] void fail_output(const std::filesystem::path& file, const std::string& message, int err);
+
 /// `message` as one line of valid UTF-8: messages quote file content, which
 /// may hold newlines or bytes that are not UTF-8 (Latin-1 names); those bytes
 /// become \xNN and line breaks become spaces.
