@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libcli11-dev nlohmann-json3-dev
   libembree-dev libbenchmark-dev
   python3-numpy python3-openimageio python3-matplotlib
+  locales
 )
 
 missing=()
