@@ -48,10 +48,15 @@ nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> 
   return j;
 }
 
-std::filesystem::path default_calibration_path() {
+std::filesystem::path executable_path() {
   std::error_code ec;
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return (ec ? std::filesystem::path(".") : exe.parent_path()) / "kappa_calibration.json";
+  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::path() : exe;
+}
+
+std::filesystem::path default_calibration_path() {
+  const auto exe = executable_path();
+  return (exe.empty() ? std::filesystem::path(".") : exe.parent_path()) / "kappa_calibration.json";
 }
 
 bool calibration_of_another_format(const std::filesystem::path& file) {

@@ -36,6 +36,9 @@ nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> 
 /// kappa_calibration.json beside the running executable (build/ for a build
 /// tree): where `kappa calibrate` writes and `kappa render` looks by default.
 std::filesystem::path default_calibration_path();
+/// The running executable (/proc/self/exe), or an empty path where it cannot
+/// be read: the folder beside it holds the calibration and converge's references.
+std::filesystem::path executable_path();
 
 /// Whether `file` is a calibration of another Kappa's format: JSON whose
 /// "format" is not this one's. False for a missing or malformed file (which

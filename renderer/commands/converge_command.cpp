@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "accel/factory.h"
+#include "accel/hash.h"
 #include "accel/thread_limit.h"
 #include "renderer/cli/accel_flags.h"
 #include "renderer/cli/command_line.h"
@@ -28,6 +29,7 @@
 #include "renderer/scene/scene_loader.h"
 #include "renderer/util/error.h"
 #include "renderer/version.h"
+#include "stats/calibration.h"
 
 #ifndef KAPPA_TOOLS_DIR
 #define KAPPA_TOOLS_DIR "tools"
@@ -76,27 +78,6 @@ std::vector<Setting> settings_of(const ConvergeOptions& options) {
   return settings;
 }
 
-std::string hex64(std::uint64_t h) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
-  return text;
-}
-
-std::uint64_t fnv1a(const std::string& text) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 0x100000001b3ull;
-  }
-  return h;
-}
-
-std::filesystem::path executable_dir() {  // the default cache's parent
-  std::error_code ec;
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? std::filesystem::path(".") : exe.parent_path();
-}
-
 struct Reference {
   ReferenceImage image;
   std::string path;
@@ -124,8 +105,7 @@ std::string binary_identity() {
   std::string id = version_string();
   if (id.find("dirty") != std::string::npos) {
     std::error_code ec;
-    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
+    if (const auto exe = executable_path(); !exe.empty()) {
       const auto size = std::filesystem::file_size(exe, ec);
       const auto time = std::filesystem::last_write_time(exe, ec).time_since_epoch().count();
       id += "|" + std::to_string(size) + "|" + std::to_string(time);
@@ -161,8 +141,11 @@ Reference reference_for(const ConvergeOptions& options, const std::vector<Settin
     key << input_hash(scene) << '|' << scene.width << 'x' << scene.height << '|' << ref.spp << '|' << ref.seed << '|'
         << o.accel << '|' << o.sampler << '|' << o.light_sampling << '|' << o.max_depth << '|'
         << (o.no_rr ? -1 : o.rr_depth) << '|' << binary_identity();
-    const std::filesystem::path dir = options.cache.empty() ? executable_dir() / "references" : std::filesystem::path(options.cache);
-    const std::filesystem::path file = dir / (scene.name + "-" + hex64(fnv1a(key.str())) + ".exr");
+    const std::filesystem::path exe = executable_path();
+    const std::filesystem::path dir = !options.cache.empty() ? std::filesystem::path(options.cache)
+                                      : exe.empty()          ? std::filesystem::path("references")
+                                                             : exe.parent_path() / "references";
+    const std::filesystem::path file = dir / (scene.name + "-" + hex16(fnv1a64(key.str())) + ".exr");
     ref.path = file.string();
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec)) {

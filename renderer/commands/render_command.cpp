@@ -129,10 +129,7 @@ int run_render(const RenderOptions& options) {
   if (const auto ext = std::filesystem::path(options.cell_map).extension(); !options.cell_map.empty() && ext != ".exr" &&
                                                                             ext != ".png")
     throw InputError("--cell-map: '" + options.cell_map + "' must end in .exr or .png");
-#ifdef KAPPA_NO_STATS
-  if (options.stats == "on") throw InputError("--stats on: this kappa was built without statistics (-DKAPPA_STATS=OFF)");
-#endif
-  const std::uint64_t cell_sample = parse_cell_sample(options.cell_sample);  // refused before loading
+  RenderSettings settings = render_settings_of(options, aov);  // a bad setting is refused before loading
   if (aov.cost && (options.stats != "on" || options.accel != "grid"))
     throw InputError("--aov cost: needs --accel grid and --stats on (it counts the grid's cells and tests)");
   if (!options.out.empty() && std::filesystem::path(options.out).extension() != ".exr")
@@ -182,8 +179,6 @@ int run_render(const RenderOptions& options) {
   });
   const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
-  RenderSettings settings = render_settings_of(options, aov);
-  settings.cell_sample = cell_sample;
   const int threads = active_threads();
 
   Film film(scene.width, scene.height, aov);

@@ -32,8 +32,6 @@ class PathTracer {
   PathTracer(const Scene& scene, const RenderSettings& settings)
       : m_scene(scene), m_lights(scene), m_settings(settings) {}
 
-  const Lights& lights() const { return m_lights; }
-
   /// What the scene has to light it, for choose_path_variant.
   SceneLighting lighting() const {
     return {m_lights.triangle_count() > 0, !(m_scene.environment == Vec3f{0, 0, 0}), m_lights.pmf_environment() > 0.0f};

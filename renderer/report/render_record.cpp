@@ -2,21 +2,21 @@
 
 #include <cstdio>
 
+#include "accel/hash.h"
 #include "accel/input_file.h"
 
 namespace kappa {
 
-std::string input_hash(const Scene& scene) {
-  std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a 64
-  for (const auto& file : scene.inputs) {
-    for (unsigned char c : read_input_file(file, "an input file")) {
-      h ^= c;
-      h *= 0x100000001b3ull;
-    }
-  }
+std::string hex16(std::uint64_t h) {
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
   return hex;
+}
+
+std::string input_hash(const Scene& scene) {
+  std::uint64_t h = kFnv1aOffset;
+  for (const auto& file : scene.inputs) h = fnv1a64(read_input_file(file, "an input file"), h);
+  return hex16(h);
 }
 
 RenderRecord render_record(const RenderOptions& options, const Scene& scene, const std::string& grid_res, int spp,

@@ -33,6 +33,8 @@ RenderRecord render_record(const RenderOptions& options, const Scene& scene, con
 
 /// FNV-1a 64 over every input file's bytes, in order, as 16 hex digits.
 std::string input_hash(const Scene& scene);
+/// 16 lower-case hex digits of h.
+std::string hex16(std::uint64_t h);
 
 /// The record as a JSON object of the same keys.
 nlohmann::ordered_json to_json(const RenderRecord& record);
