@@ -2,7 +2,6 @@
 // over the triangles (count per cell, then fill) into compressed rows.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -16,6 +15,7 @@
 #include "check.h"
 #include "grid.h"
 #include "input_error.h"
+#include "physical_memory.h"
 #include "grid_insert.h"
 
 namespace kappa {
@@ -32,11 +32,7 @@ void for_each_chunk(std::size_t n, TaskProgress* progress, F&& f) {
 
 }  // namespace
 
-std::uint64_t default_grid_max_bytes() {
-  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || page <= 0) return std::uint64_t(4) << 30;
-  return std::uint64_t(pages) * std::uint64_t(page) / 4;
-}
+std::uint64_t default_grid_max_bytes() { return physical_memory_bytes() / 4; }
 
 UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions& options, TaskProgress* progress)
     : m_triangles(triangles) {

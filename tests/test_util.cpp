@@ -5,11 +5,40 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <numbers>
 #include <random>
 
 namespace kappa::test {
+
+double test_scale() {
+  static const double scale = [] {
+    const char* text = std::getenv("KAPPA_TEST_SCALE");
+    if (text == nullptr || *text == '\0') return 1.0;
+    char* end = nullptr;
+    const double v = std::strtod(text, &end);
+    if (*end != '\0' || !(v > 0 && v <= 1)) {
+      std::fprintf(stderr, "KAPPA_TEST_SCALE=%s: expected a number in (0, 1]\n", text);
+      std::abort();
+    }
+    return v;
+  }();
+  return scale;
+}
+
+int scaled(int n, int at_least) {
+  return std::max(at_least, int(std::lround(double(n) * test_scale())));
+}
+
+double noise_widening(int n, int at_least) { return std::sqrt(double(n) / double(scaled(n, at_least))); }
+
+bool bitwise_equal(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+}
 
 TempDir::TempDir() {
   static std::mt19937_64 rng(std::random_device{}());

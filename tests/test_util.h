@@ -21,6 +21,22 @@ inline std::filesystem::path shared_scenes_dir() {
   return std::filesystem::is_directory(p) ? p : std::filesystem::path();
 }
 
+/// KAPPA_TEST_SCALE, in (0, 1] (default 1): the sanitizer suite
+/// (tools/test.sh --sanitize) sets 0.25 so that the heaviest tests cast fewer
+/// rays. Aborts on any other value, so a typo cannot pass silently.
+double test_scale();
+
+/// `n` samples or rays scaled by test_scale(), at least `at_least`.
+int scaled(int n, int at_least = 1);
+
+/// How much wider a tolerance set by noise must be at scaled(n) samples than
+/// at n: the standard error grows as 1/sqrt(samples).
+double noise_widening(int n, int at_least = 1);
+
+/// Bit for bit the same floats (an empty channel equals an empty one: memcmp
+/// must not see its null data(), which UBSan reports even for 0 bytes).
+bool bitwise_equal(const std::vector<float>& a, const std::vector<float>& b);
+
 /// A fresh empty folder under the system temp dir, removed by the destructor.
 class TempDir {
  public:

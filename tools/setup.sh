@@ -11,6 +11,8 @@ packages=(
   libembree-dev libbenchmark-dev
   python3-numpy python3-openimageio python3-matplotlib
   locales
+  # clang and its runtime (libFuzzer, sanitizers) for tools/fuzz.sh
+  clang libclang-rt-14-dev
 )
 
 missing=()

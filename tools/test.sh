@@ -1,9 +1,54 @@
 #!/usr/bin/env bash
-# Sets up a fresh Debian machine, builds Kappa and runs every test; then
-# builds the statistics-free baseline and checks it (tools/check_baseline.sh).
+# Sets up a fresh Debian machine, builds Kappa and runs every test.
+#   tools/test.sh [CTEST ARGS]             Release build in build/, every test, then the
+#                                          statistics-free baseline (tools/check_baseline.sh)
+#   tools/test.sh --sanitize [CTEST ARGS]  ASan + UBSan build in build-asan/ with KAPPA_DCHECK on;
+#                                          the tests read KAPPA_TEST_SCALE and cast fewer rays;
+#                                          glibc's own leaks are suppressed (tools/lsan.supp)
+#   tools/test.sh --tsan [CTEST ARGS]      TSan build in build-tsan/: the multi-threaded tests
+#                                          (not in CI; libtbb's reports are suppressed, tools/tsan.supp)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+mode=normal
+case "${1:-}" in
+  --sanitize) mode=asan; shift ;;
+  --tsan) mode=tsan; shift ;;
+esac
 tools/setup.sh
-tools/build.sh
-(cd build && ctest --output-on-failure -j 2 "$@")
-tools/check_baseline.sh
+jobs="${KAPPA_JOBS:-2}"
+
+# Configures (once) and builds an instrumented tree.
+build_sanitized() {  # DIR SANITIZERS
+  if [ ! -f "$1/build.ninja" ]; then
+    cmake -S . -B "$1" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DKAPPA_DCHECKS=ON \
+      -DKAPPA_SANITIZE="$2" >/dev/null
+  fi
+  cmake --build "$1" -j "$jobs"
+}
+
+case "$mode" in
+  normal)
+    tools/build.sh
+    (cd build && ctest --output-on-failure -j 2 "$@")
+    tools/check_baseline.sh
+    ;;
+  asan)
+    build_sanitized build-asan address,undefined
+    # Fewer rays: the sanitizers look for memory and UB errors, which do not
+    # need the statistical power of the normal suite (tests/test_util.h).
+    export KAPPA_TEST_SCALE="${KAPPA_TEST_SCALE:-0.25}"
+    export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1"
+    export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+    export LSAN_OPTIONS="suppressions=$PWD/tools/lsan.supp:print_suppressions=0"
+    (cd build-asan && ctest --output-on-failure -j 2 "$@")
+    ;;
+  tsan)
+    build_sanitized build-tsan thread
+    export KAPPA_TEST_SCALE="${KAPPA_TEST_SCALE:-0.25}"
+    export TSAN_OPTIONS="suppressions=$PWD/tools/tsan.supp:halt_on_error=1:second_deadlock_stack=1"
+    # The tests whose threads share state: the per-cell counters, the tile
+    # loop, the parallel grid build and the progress display.
+    (cd build-tsan && ctest --output-on-failure -j 1 \
+      -R "${KAPPA_TSAN_TESTS:-^(Determinism|Passes|Budget|RenderStats|Cast|CastIdentities|Grid|GridInsert|Bench|Progress|Interrupt|PathVariant|Extremes)\.}" "$@")
+    ;;
+esac

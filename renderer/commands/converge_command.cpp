@@ -23,6 +23,7 @@
 #include "renderer/io/exr_input.h"
 #include "renderer/io/exr_output.h"
 #include "renderer/io/output_guard.h"
+#include "renderer/render/frame_accumulator.h"
 #include "renderer/render/integrator.h"
 #include "renderer/render/sampler_kind.h"
 #include "renderer/report/render_record.h"
@@ -322,6 +323,7 @@ int run_converge(const ConvergeOptions& options) {
   if (base.height > 0) scene.height = base.height;
   if (scene.camera_framed)
     scene.camera = framing_camera(scene.bounds(), scene.camera.vfov_deg, float(scene.width) / float(scene.height));
+  refuse_frame_over_memory(scene.width, scene.height, AovSelection{.variance = true});  // the reference's
 
   std::vector<std::filesystem::path> inputs = scene.inputs;
   if (!options.reference.empty()) inputs.push_back(options.reference);

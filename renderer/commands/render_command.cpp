@@ -25,6 +25,7 @@
 #include "renderer/io/cell_map.h"
 #include "renderer/io/exr_output.h"
 #include "renderer/io/output_guard.h"
+#include "renderer/render/frame_accumulator.h"
 #include "renderer/render/integrator.h"
 #include "renderer/render/sampler_kind.h"
 #include "renderer/report/render_record.h"
@@ -147,6 +148,7 @@ int run_render(const RenderOptions& options) {
   if (options.height > 0) scene.height = options.height;
   if (scene.camera_framed)  // frame again for the film's final aspect ratio
     scene.camera = framing_camera(scene.bounds(), scene.camera.vfov_deg, float(scene.width) / float(scene.height));
+  refuse_frame_over_memory(scene.width, scene.height, aov);
 
   // No output may replace an input or another output; then claim the
   // outputs before rendering: an unwritable path fails now, not after an

@@ -5,9 +5,32 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
+#include "accel/byte_size.h"
+#include "accel/input_error.h"
+#include "accel/physical_memory.h"
+
 namespace kappa {
+
+std::uint64_t frame_bytes(std::size_t pixels, const AovSelection& aov) {
+  const std::uint64_t channels = 3 + (aov.albedo ? 3 : 0) + (aov.normal ? 3 : 0) + (aov.depth ? 1 : 0) +
+                                 (aov.cost ? 2 : 0) + (aov.variance ? 3 : 0) + (aov.spp ? 1 : 0);
+  const bool aov_sums = aov.albedo || aov.normal || aov.depth || aov.cost;
+  const std::uint64_t per_pixel = sizeof(PixelSamples) + (aov_sums ? sizeof(PixelAovSums) : 0) +
+                                  1 /* adaptive's active flag */ + 2 * channels * sizeof(float);
+  return std::uint64_t(pixels) * per_pixel;
+}
+
+void refuse_frame_over_memory(int width, int height, const AovSelection& aov) {
+  const std::uint64_t need = frame_bytes(std::size_t(width) * std::size_t(height), aov);
+  const std::uint64_t have = physical_memory_bytes();
+  if (need > have)
+    throw InputError("film " + std::to_string(width) + "x" + std::to_string(height) + ": its buffers need " +
+                     byte_size(need) + ", more than this machine's " + byte_size(have) +
+                     " of memory (a smaller film, or fewer AOVs)");
+}
 
 FrameAccumulator::FrameAccumulator(std::size_t pixels, const AovSelection& aov)
     : m_samples(pixels), m_active_count(pixels) {

@@ -30,6 +30,16 @@ struct SppSpread {
 /// Pixels per block of the frame-wide passes (resolve, estimate, retire).
 inline constexpr std::size_t kBlock = 4096;
 
+/// Bytes a frame of `pixels` holds while it renders with `aov`: each pixel's
+/// sums (FrameAccumulator), the film's channels, and the interleaved copy the
+/// EXR writer makes of them.
+std::uint64_t frame_bytes(std::size_t pixels, const AovSelection& aov);
+
+/// Throws InputError when a width x height frame needs more than the
+/// machine's physical memory: refused before anything is allocated, not ended
+/// by the allocator halfway through.
+void refuse_frame_over_memory(int width, int height, const AovSelection& aov);
+
 /// Writes one pixel's selected channels of `film` from its sums.
 void resolve_pixel(Film& film, std::size_t pixel, const PixelSamples& samples, const PixelAovSums& aovs);
 

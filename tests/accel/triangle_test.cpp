@@ -178,12 +178,12 @@ std::size_t escaping_rays(const Scene& mesh, float inner_radius, std::size_t cou
 TEST(Triangle, WatertightSphere) {
   Scene sphere;
   test::add_sphere(sphere, {0, 0, 0}, 1.0f, 12, 24, false, 0);  // origins within 0.87 of the centre
-  EXPECT_EQ(escaping_rays(sphere, 0.5f, 600000, 1), 0u);
+  EXPECT_EQ(escaping_rays(sphere, 0.5f, test::scaled(600000), 1), 0u);
 }
 
 TEST(Triangle, WatertightJitteredCube) {
   const Scene cube = jittered_cube(5, 0.08f, 42);
-  EXPECT_EQ(escaping_rays(cube, 0.9f, 600000, 2), 0u);
+  EXPECT_EQ(escaping_rays(cube, 0.9f, test::scaled(600000), 2), 0u);
 }
 
 TEST(Triangle, TheWatertightRaySetCatchesALeakyTest) {

@@ -31,8 +31,9 @@ void expect_furnace(float rho, int spp, int max_depth, SamplerKind sampler = Sam
   settings.sampler = sampler;
   settings.light_sampling = strategy;
   settings.rr_depth = rr_depth;
-  settings.spp = spp;
+  settings.spp = test::scaled(spp);
   settings.max_depth = max_depth;
+  const double widening = test::noise_widening(spp);
   const Film film = test::render_scene(furnace(rho, Le), settings);
   for (int c = 0; c < 3; ++c) {
     const auto stats = test::channel_stats(film, c);
@@ -41,7 +42,7 @@ void expect_furnace(float rho, int spp, int max_depth, SamplerKind sampler = Sam
     std::printf("furnace rho=%.2f max_depth=%d channel %d: mean %.5f expected %.5f rel.err %.3f%% (%.2f SE)\n", rho,
                 max_depth, c, stats.mean, expected, 100 * std::abs(stats.mean - expected) / expected,
                 std::abs(stats.mean - expected) / stats.standard_error);
-    EXPECT_LT(std::abs(stats.mean - expected), 0.01 * expected);
+    EXPECT_LT(std::abs(stats.mean - expected), 0.01 * widening * expected);
     EXPECT_LT(std::abs(stats.mean - expected), 4.0 * stats.standard_error + 1e-6 * expected);
   }
 }

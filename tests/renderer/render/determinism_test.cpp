@@ -13,10 +13,6 @@
 namespace kappa {
 namespace {
 
-bool bitwise_equal(const std::vector<float>& a, const std::vector<float>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
-
 TEST(Determinism, CornellBoxIsBitwiseIdenticalAt1And2And4Threads) {
   Warnings warnings;
   Scene scene = load_scene(test::assets_dir() / "cornell-box" / "scene.json", warnings);
@@ -32,14 +28,14 @@ TEST(Determinism, CornellBoxIsBitwiseIdenticalAt1And2And4Threads) {
   const Film one = render_on(1);
   for (int threads : {2, 4}) {
     const Film many = render_on(threads);
-    EXPECT_TRUE(bitwise_equal(one.rgb, many.rgb)) << threads << " threads";
-    EXPECT_TRUE(bitwise_equal(one.albedo, many.albedo)) << threads << " threads";
-    EXPECT_TRUE(bitwise_equal(one.normal, many.normal)) << threads << " threads";
-    EXPECT_TRUE(bitwise_equal(one.depth, many.depth)) << threads << " threads";
+    EXPECT_TRUE(test::bitwise_equal(one.rgb, many.rgb)) << threads << " threads";
+    EXPECT_TRUE(test::bitwise_equal(one.albedo, many.albedo)) << threads << " threads";
+    EXPECT_TRUE(test::bitwise_equal(one.normal, many.normal)) << threads << " threads";
+    EXPECT_TRUE(test::bitwise_equal(one.depth, many.depth)) << threads << " threads";
   }
   // The seed does matter: a different one gives a different image.
   settings.seed = 8;
-  EXPECT_FALSE(bitwise_equal(one.rgb, test::render_scene(scene, settings).rgb));
+  EXPECT_FALSE(test::bitwise_equal(one.rgb, test::render_scene(scene, settings).rgb));
 }
 
 TEST(Determinism, ImageIsFiniteAndLitWhereTheLightIs) {
@@ -95,10 +91,10 @@ void expect_same_image_with_grid_and_naive(const std::filesystem::path& scene_fi
   settings.aov = AovSelection{true, true, true};
   const Film naive = test::render_scene(scene, settings, "naive");
   const Film grid = test::render_scene(scene, settings, "grid");
-  EXPECT_TRUE(bitwise_equal(naive.rgb, grid.rgb)) << scene_file;
-  EXPECT_TRUE(bitwise_equal(naive.albedo, grid.albedo)) << scene_file;
-  EXPECT_TRUE(bitwise_equal(naive.normal, grid.normal)) << scene_file;
-  EXPECT_TRUE(bitwise_equal(naive.depth, grid.depth)) << scene_file;
+  EXPECT_TRUE(test::bitwise_equal(naive.rgb, grid.rgb)) << scene_file;
+  EXPECT_TRUE(test::bitwise_equal(naive.albedo, grid.albedo)) << scene_file;
+  EXPECT_TRUE(test::bitwise_equal(naive.normal, grid.normal)) << scene_file;
+  EXPECT_TRUE(test::bitwise_equal(naive.depth, grid.depth)) << scene_file;
 }
 
 TEST(Determinism, CornellBoxIsBitwiseIdenticalWithGridAndNaive) {

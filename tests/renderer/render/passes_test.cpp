@@ -19,10 +19,6 @@
 namespace kappa {
 namespace {
 
-bool bitwise_equal(const std::vector<float>& a, const std::vector<float>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
-
 Scene cornell(int size) {
   Warnings warnings;
   Scene scene = load_scene(test::assets_dir() / "cornell-box" / "scene.json", warnings);
@@ -78,15 +74,15 @@ TEST(Passes, AStoppedRenderIsBitwiseTheSppImageOfItsTotal) {
 
   settings.spp = budgeted.result.spp;
   const Film one_pass = test::render_scene(scene, settings, "grid");
-  EXPECT_TRUE(bitwise_equal(budgeted.film.rgb, one_pass.rgb)) << budgeted.result.spp << " spp";
-  EXPECT_TRUE(bitwise_equal(budgeted.film.variance, one_pass.variance));
-  EXPECT_TRUE(bitwise_equal(budgeted.film.albedo, one_pass.albedo));
-  EXPECT_TRUE(bitwise_equal(budgeted.film.depth, one_pass.depth));
-  EXPECT_TRUE(bitwise_equal(budgeted.film.spp, one_pass.spp));
+  EXPECT_TRUE(test::bitwise_equal(budgeted.film.rgb, one_pass.rgb)) << budgeted.result.spp << " spp";
+  EXPECT_TRUE(test::bitwise_equal(budgeted.film.variance, one_pass.variance));
+  EXPECT_TRUE(test::bitwise_equal(budgeted.film.albedo, one_pass.albedo));
+  EXPECT_TRUE(test::bitwise_equal(budgeted.film.depth, one_pass.depth));
+  EXPECT_TRUE(test::bitwise_equal(budgeted.film.spp, one_pass.spp));
   EXPECT_EQ(budgeted.film.spp[0], float(budgeted.result.spp));
   // And the total matters: one sample fewer is another image.
   settings.spp -= 1;
-  EXPECT_FALSE(bitwise_equal(budgeted.film.rgb, test::render_scene(scene, settings, "grid").rgb));
+  EXPECT_FALSE(test::bitwise_equal(budgeted.film.rgb, test::render_scene(scene, settings, "grid").rgb));
 }
 
 // The interrupt of the next test, raised from inside a pass: the test hook
@@ -125,8 +121,8 @@ TEST(Passes, AnInterruptedRenderIsTheImageOfItsCompletedPasses) {
   settings.test_nonfinite = nullptr;
   settings.spp = r.spp;
   const Film one_pass = test::render_scene(scene, settings, "grid");
-  EXPECT_TRUE(bitwise_equal(film.rgb, one_pass.rgb)) << r.spp << " spp";
-  EXPECT_TRUE(bitwise_equal(film.variance, one_pass.variance));
+  EXPECT_TRUE(test::bitwise_equal(film.rgb, one_pass.rgb)) << r.spp << " spp";
+  EXPECT_TRUE(test::bitwise_equal(film.variance, one_pass.variance));
 }
 
 TEST(Passes, TheTimeBudgetEndsWithinItsTenPerCentAndPassesTakeAtMostFivePerCent) {
@@ -212,7 +208,7 @@ TEST(Passes, NonFiniteSamplesAreDroppedFromTheirPixelNotAveragedIn) {
   Film film(scene.width, scene.height, settings.aov);
   const RenderResult r = render(scene, *accel, settings, film);
   EXPECT_EQ(r.nonfinite_samples, 4u * film.pixels());
-  EXPECT_TRUE(bitwise_equal(film.rgb, four.rgb));
+  EXPECT_TRUE(test::bitwise_equal(film.rgb, four.rgb));
   for (float v : film.rgb) ASSERT_TRUE(std::isfinite(v));
   // A pixel whose every sample is non-finite reads 0, not NaN.
   settings.test_nonfinite = [](std::uint64_t pixel, std::uint64_t) { return pixel == 5; };
@@ -238,8 +234,8 @@ TEST(Passes, AdaptiveSamplingIsTheSameImageForAnyThreadCount) {
     return render_budgeted(scene, budget, settings, clock);
   };
   const Rendered one = on(1), two = on(2);
-  EXPECT_TRUE(bitwise_equal(one.film.rgb, two.film.rgb));
-  EXPECT_TRUE(bitwise_equal(one.film.spp, two.film.spp));
+  EXPECT_TRUE(test::bitwise_equal(one.film.rgb, two.film.rgb));
+  EXPECT_TRUE(test::bitwise_equal(one.film.spp, two.film.spp));
   EXPECT_EQ(one.pass_spp, two.pass_spp);
   // Pixels stopped at different counts, none before the minimum, and those
   // that stopped early are below the target on their own.

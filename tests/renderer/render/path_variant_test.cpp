@@ -13,10 +13,6 @@
 namespace kappa {
 namespace {
 
-bool bitwise_equal(const std::vector<float>& a, const std::vector<float>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
-
 TEST(PathVariant, TheSceneDecidesWhichLightsAreSampled) {
   const auto name = [](SceneLighting l, LightSampling s, bool aovs = false, bool specialise = true) {
     return path_variant_name(choose_path_variant(l, s, aovs, specialise));
@@ -95,9 +91,9 @@ TEST(PathVariant, EverySpecialisedVariantRendersTheGeneralImage) {
           const Film specialised = test::render_scene(scene, settings);
           settings.specialise = false;
           const Film general = test::render_scene(scene, settings);
-          EXPECT_TRUE(bitwise_equal(specialised.rgb, general.rgb));
-          EXPECT_TRUE(bitwise_equal(specialised.albedo, general.albedo));
-          EXPECT_TRUE(bitwise_equal(specialised.depth, general.depth));
+          EXPECT_TRUE(test::bitwise_equal(specialised.rgb, general.rgb));
+          EXPECT_TRUE(test::bitwise_equal(specialised.albedo, general.albedo));
+          EXPECT_TRUE(test::bitwise_equal(specialised.depth, general.depth));
           ++variants_seen;
         }
   EXPECT_EQ(variants_seen, 5 * 3 * 3 * 2);

@@ -52,17 +52,13 @@ TEST(RenderStats, CountingDoesNotChangeThePixels) {
   Film off(scene.width, scene.height, {}), on(scene.width, scene.height, {});
   const RenderResult a = render_with(scene, *grid, false, 0, off);
   const RenderResult b = render_with(scene, *grid, true, 0, on);
-  EXPECT_EQ(std::memcmp(off.rgb.data(), on.rgb.data(), off.rgb.size() * sizeof(float)), 0);
+  EXPECT_TRUE(test::bitwise_equal(off.rgb, on.rgb));
   EXPECT_EQ(a.rays, b.rays);
   EXPECT_FALSE(a.counters);
   ASSERT_TRUE(b.counters);
   std::uint64_t counted = 0;
   for (const auto& c : b.counters->classes) counted += c.totals.rays;
   EXPECT_EQ(counted, b.rays);  // every query is in exactly one class
-}
-
-bool same_floats(const std::vector<float>& a, const std::vector<float>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
 // The grid's case is above; naive and Embree count through ClassQueries.
@@ -74,7 +70,7 @@ TEST(RenderStats, CountingDoesNotChangeThePixelsOfNaiveOrEmbree) {
     Film off(scene.width, scene.height, {}), on(scene.width, scene.height, {});
     const RenderResult a = render_with(scene, *accel, false, 0, off);
     const RenderResult b = render_with(scene, *accel, true, 0, on);
-    EXPECT_TRUE(same_floats(off.rgb, on.rgb));
+    EXPECT_TRUE(test::bitwise_equal(off.rgb, on.rgb));
     EXPECT_EQ(a.rays, b.rays);
     ASSERT_TRUE(b.counters);
   }
@@ -99,10 +95,10 @@ TEST(RenderStats, StatsOnFramesAndCostAovsDoNotDependOnTheThreadCount) {
   }
   for (std::size_t k = 1; k < films.size(); ++k) {
     SCOPED_TRACE(k);
-    EXPECT_TRUE(same_floats(films[0].rgb, films[k].rgb));
-    EXPECT_TRUE(same_floats(films[0].albedo, films[k].albedo));
-    EXPECT_TRUE(same_floats(films[0].cost_cells, films[k].cost_cells));
-    EXPECT_TRUE(same_floats(films[0].cost_tests, films[k].cost_tests));
+    EXPECT_TRUE(test::bitwise_equal(films[0].rgb, films[k].rgb));
+    EXPECT_TRUE(test::bitwise_equal(films[0].albedo, films[k].albedo));
+    EXPECT_TRUE(test::bitwise_equal(films[0].cost_cells, films[k].cost_cells));
+    EXPECT_TRUE(test::bitwise_equal(films[0].cost_tests, films[k].cost_tests));
     EXPECT_EQ(results[0].cell_sample, 1u);
     EXPECT_EQ(results[0].counters->classes[kCamera].visits(), results[k].counters->classes[kCamera].visits());
   }

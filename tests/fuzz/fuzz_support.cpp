@@ -1,0 +1,75 @@
+#include "fuzz_support.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
+#include "accel/check.h"
+#include "renderer/scene/obj_limits.h"
+
+namespace kappa::fuzz {
+namespace {
+
+bool finite(const Vec3f& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+bool within_limit(const Vec3f& v) {
+  return std::fabs(double(v.x)) <= kMaxCoordinate && std::fabs(double(v.y)) <= kMaxCoordinate &&
+         std::fabs(double(v.z)) <= kMaxCoordinate;
+}
+
+bool in_unit_range(const Vec3f& v) { return v.x >= 0 && v.x <= 1 && v.y >= 0 && v.y <= 1 && v.z >= 0 && v.z <= 1; }
+
+}  // namespace
+
+const std::filesystem::path& scratch_dir() {
+  static const std::filesystem::path dir = [] {
+    auto p = std::filesystem::temp_directory_path() / ("kappa-fuzz-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(p);
+    std::atexit([] {
+      std::error_code ec;
+      std::filesystem::remove_all(scratch_dir(), ec);
+    });
+    return p;
+  }();
+  return dir;
+}
+
+std::filesystem::path write_scratch(const std::string& name, const std::uint8_t* data, std::size_t size) {
+  const auto path = scratch_dir() / name;
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(data), std::streamsize(size));
+  KAPPA_CHECK(bool(out));
+  return path;
+}
+
+void require_refusal_names_an_input(const std::string& message) {
+  // The fuzzed file, one beside it, or an absolute path the input names
+  // (`mtllib /` is refused as "/: is a directory"): a path either way.
+  KAPPA_CHECK(message.rfind(scratch_dir().string() + "/", 0) == 0 || message.rfind("/", 0) == 0);
+  KAPPA_CHECK(message.find(": ") != std::string::npos);
+}
+
+void require_valid_scene(const Scene& scene) {
+  KAPPA_CHECK_EQ(scene.material_of.size(), scene.triangles.size());
+  for (const Triangle& t : scene.triangles) {
+    for (const Vec3f& v : {t.v0, t.v1, t.v2}) {
+      KAPPA_CHECK(finite(v));
+      KAPPA_CHECK(within_limit(v));
+    }
+  }
+  for (const std::uint32_t m : scene.material_of) KAPPA_CHECK_LT(m, scene.materials.size());
+  for (const Material& m : scene.materials) {
+    KAPPA_CHECK(finite(m.albedo) && in_unit_range(m.albedo));
+    KAPPA_CHECK(finite(m.emission) && m.emission.x >= 0 && m.emission.y >= 0 && m.emission.z >= 0);
+  }
+  KAPPA_CHECK(finite(scene.camera.eye) && finite(scene.camera.look_at) && finite(scene.camera.up));
+  KAPPA_CHECK(std::isfinite(scene.camera.vfov_deg) && scene.camera.vfov_deg > 0 && scene.camera.vfov_deg < 180);
+  KAPPA_CHECK(finite(scene.environment) && scene.environment.x >= 0 && scene.environment.y >= 0 &&
+              scene.environment.z >= 0);
+  KAPPA_CHECK_GT(scene.width, 0);
+  KAPPA_CHECK_GT(scene.height, 0);
+}
+
+}  // namespace kappa::fuzz
