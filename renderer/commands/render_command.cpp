@@ -250,6 +250,7 @@ int run_render(const RenderOptions& options) {
         value);
   metadata.insert(metadata.end(), {{"kappa:threads", threads},
                                    {"kappa:render_time_s", result.seconds},
+                                   {"kappa:load_s", scene.load_s},
                                    {"kappa:accel_build_s", build_s},
                                    {"kappa:rays", double(result.rays)}});
   write_exr(output.temp_path(), film, metadata, output.target());

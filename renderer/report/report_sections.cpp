@@ -10,6 +10,7 @@ nlohmann::ordered_json report_header(const Scene& scene, const Accelerator& acce
   j["schema_version"] = kReportSchemaVersion;
   j["kappa_version"] = version_string();
   j["scene"] = scene.source.string();
+  j["load_s"] = scene.load_s;
   j["accel"] = std::string(accel.name());
   return j;
 }

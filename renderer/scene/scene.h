@@ -43,6 +43,9 @@ struct Scene {
   Vec3f environment{0, 0, 0};  ///< constant radiance of rays that escape
   int width = 512;
   int height = 512;
+  /// Seconds load_scene took to read, check and parse the files (reported
+  /// apart from the accelerator's build and the render).
+  double load_s = 0;
 
   Bounds3f bounds() const;
 };

@@ -1,5 +1,6 @@
 #include "renderer/scene/scene_loader.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -214,6 +215,7 @@ std::string scene_name(const std::filesystem::path& file) {
 }
 
 Scene load_scene(const std::filesystem::path& file, Warnings& warnings, TaskProgress* progress) {
+  const auto start = std::chrono::steady_clock::now();
   Warnings pending;  // printed only if the scene loads: a refusal is one line
   check_input_file(file, "a scene file");
   const std::string ext = lower_extension(file);
@@ -229,6 +231,7 @@ Scene load_scene(const std::filesystem::path& file, Warnings& warnings, TaskProg
   if (scene.triangles.size() >= std::size_t(kNoTriangle))
     fail(file, 0, "more than 2^32 - 1 triangles; Kappa uses 32-bit triangle ids");
   warnings.insert(warnings.end(), pending.begin(), pending.end());
+  scene.load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return scene;
 }
 
