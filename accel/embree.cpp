@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include "float_util.h"
+#include "parallel.h"
 
 namespace kappa {
 namespace {
@@ -120,18 +121,20 @@ EmbreeAccelerator::EmbreeAccelerator(std::span<const Triangle> triangles, TaskPr
     // default task context right then and captures those settings, and every
     // later parallel_for from this thread (the whole render) would run with
     // them. A no-op parallel_for first makes TBB capture the caller's own.
-    tbb::parallel_for(0, 1, [](int) {});
+    kappa::parallel_for(0, 1, [](int) {});
     if (progress) {
       progress->begin("embree: building the BVH", 1000);
       rtcSetSceneProgressMonitorFunction(
           m_scene,
           [](void* task, double fraction) {
             static_cast<TaskProgress*>(task)->set(std::uint64_t(fraction * 1000), 1000);
-            return true;  // never cancel
+            tbb_release();  // Embree's TBB workers call this (parallel.h)
+            return true;    // never cancel
           },
           progress);
     }
     rtcCommitScene(m_scene);
+    tbb_acquire();  // its workers' writes (the progress callback's) come before this (parallel.h)
     if (progress) rtcSetSceneProgressMonitorFunction(m_scene, nullptr, nullptr);  // `progress` dies after the build
     check("building the BVH");
   } catch (...) {

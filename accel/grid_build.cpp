@@ -17,6 +17,7 @@
 #include "input_error.h"
 #include "physical_memory.h"
 #include "grid_insert.h"
+#include "parallel.h"
 
 namespace kappa {
 namespace {
@@ -24,7 +25,7 @@ namespace {
 /// f(k) for k in [0, n) in parallel, counting each chunk done.
 template <typename F>
 void for_each_chunk(std::size_t n, TaskProgress* progress, F&& f) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
+  kappa::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t k = range.begin(); k != range.end(); ++k) f(k);
     advance(progress, range.size());
   });
@@ -145,7 +146,7 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
       m_refs[slot] = id;
     });
   });
-  tbb::parallel_for(std::uint64_t(0), cells, [&](std::uint64_t c) {
+  kappa::parallel_for(std::uint64_t(0), cells, [&](std::uint64_t c) {
     std::sort(m_refs.begin() + m_offsets[c], m_refs.begin() + m_offsets[c + 1]);
   });
   m_info.build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -24,6 +24,7 @@
 #include "collusion.h"
 #include "counters.h"
 #include "per_cell_budget.h"
+#include "accel/parallel.h"
 
 namespace kappa {
 
@@ -55,7 +56,7 @@ namespace detail {
 template <GridWalk Walk, PerCell Mode, class Walker>
 void walk_all(const Walker& walker, std::span<const Ray> rays, std::uint64_t every,
               tbb::enumerable_thread_specific<CellCounters>& per_thread) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024), [&](const auto& range) {
+  kappa::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024), [&](const auto& range) {
     CellCounters& counters = per_thread.local();
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
       const auto walk = [&](auto& tally) {

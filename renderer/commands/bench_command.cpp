@@ -18,6 +18,7 @@
 #include "renderer/render/ray_sets.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/util/error.h"
+#include "accel/parallel.h"
 
 namespace kappa {
 namespace {
@@ -41,7 +42,7 @@ double time_pass(const A& accel, const RaySet& set, tbb::task_arena& arena, std:
   std::atomic<std::uint64_t> found{0};
   const auto start = std::chrono::steady_clock::now();
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, set.rays.size(), 4096), [&](const auto& range) {
+    kappa::parallel_for(tbb::blocked_range<std::size_t>(0, set.rays.size(), 4096), [&](const auto& range) {
       std::uint64_t local = 0;
       if (set.occlusion) {
         for (std::size_t i = range.begin(); i < range.end(); ++i) local += accel.any_hit(set.rays[i]);

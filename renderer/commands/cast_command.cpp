@@ -24,6 +24,7 @@
 #include "stats/cost_model.h"
 #include "stats/report.h"
 #include "stats/synthetic_rays.h"
+#include "accel/parallel.h"
 
 namespace kappa {
 
@@ -94,7 +95,7 @@ int run_cast(const CastOptions& options) {
       // Accelerators without cells: only what applies (counts, hits, time).
       std::atomic<std::uint64_t> hits{0};
       const auto start = std::chrono::steady_clock::now();
-      tbb::parallel_for(std::size_t(0), rays.size(), [&](std::size_t i) {
+      kappa::parallel_for(std::size_t(0), rays.size(), [&](std::size_t i) {
         const bool hit = walk == GridWalk::any ? a.any_hit(rays[i]) : a.closest_hit(rays[i]).has_value();
         hits.fetch_add(hit, std::memory_order_relaxed);
       });

@@ -11,6 +11,7 @@
 #include "accel/byte_size.h"
 #include "accel/input_error.h"
 #include "accel/physical_memory.h"
+#include "accel/parallel.h"
 
 namespace kappa {
 
@@ -46,7 +47,7 @@ template <typename T, typename F>
 std::vector<T> per_block(std::size_t pixels, F&& f) {
   const std::size_t blocks = (pixels + kBlock - 1) / kBlock;
   std::vector<T> out(blocks);
-  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+  kappa::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
     out[b] = f(b * kBlock, std::min(pixels, (b + 1) * kBlock));
   });
   return out;
@@ -118,7 +119,7 @@ void resolve_pixel(Film& film, std::size_t pixel, const PixelSamples& p, const P
 
 void FrameAccumulator::resolve(Film& film) const {
   static const PixelAovSums kNone;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_samples.size(), kBlock), [&](const auto& range) {
+  kappa::parallel_for(tbb::blocked_range<std::size_t>(0, m_samples.size(), kBlock), [&](const auto& range) {
     for (std::size_t pixel = range.begin(); pixel != range.end(); ++pixel)
       resolve_pixel(film, pixel, m_samples[pixel], m_aovs.empty() ? kNone : m_aovs[pixel]);
   });

@@ -18,6 +18,7 @@
 #include "renderer/render/frame_accumulator.h"
 #include "renderer/render/path_tracer.h"
 #include "renderer/render/samplers.h"
+#include "accel/parallel.h"
 
 namespace kappa {
 
@@ -59,7 +60,7 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
   // short keeps its sums as they were.
   const auto run_pass_with = [&]<class Sampler, PathVariant V>(std::uint32_t first, std::uint32_t count) {
     std::atomic<std::size_t> tiles_done{0};
-    tbb::parallel_for(std::size_t(0), tile_count, [&](std::size_t tile) {
+    kappa::parallel_for(std::size_t(0), tile_count, [&](std::size_t tile) {
       if (abandoned.load(std::memory_order_relaxed)) return;
       Counters& local = counters.local();
       auto queries = make_queries();
