@@ -8,6 +8,8 @@
 
 #include "accel/check.h"
 #include "renderer/scene/obj_limits.h"
+#include "renderer/scene/scene_loader.h"
+#include "renderer/util/error.h"
 
 namespace kappa::fuzz {
 namespace {
@@ -70,6 +72,15 @@ void require_valid_scene(const Scene& scene) {
               scene.environment.z >= 0);
   KAPPA_CHECK_GT(scene.width, 0);
   KAPPA_CHECK_GT(scene.height, 0);
+}
+
+void load_and_check(const std::filesystem::path& file) {
+  Warnings warnings;
+  try {
+    require_valid_scene(load_scene(file, warnings));
+  } catch (const InputError& e) {
+    require_refusal_names_an_input(e.what());
+  }
 }
 
 }  // namespace kappa::fuzz

@@ -26,6 +26,12 @@ std::filesystem::path write_scratch(const std::string& name, const std::uint8_t*
 /// one line (printable_line).
 void require_refusal_names_an_input(const std::string& message);
 
+/// Loads `file` as `kappa render` does and requires the outcome every scene
+/// target requires: a scene that holds what the renderer assumes
+/// (require_valid_scene), or a refusal naming a file
+/// (require_refusal_names_an_input).
+void load_and_check(const std::filesystem::path& file);
+
 /// Aborts unless a scene the loader accepted holds what the renderer assumes:
 /// finite vertices within the coordinate limit, a material per triangle, finite
 /// albedo in [0, 1] and emission >= 0, a finite camera and environment, and a

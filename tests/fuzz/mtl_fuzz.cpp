@@ -6,7 +6,6 @@
 #include <string>
 
 #include "fuzz_support.h"
-#include "renderer/scene/scene_loader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace kappa;
@@ -16,14 +15,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       "usemtl light\nf 1 2 3\n"
       "usemtl white\nf 2 4 3\n"
       "usemtl a\nf 1 2 4\n";
-  const auto mtl = fuzz::write_scratch("fuzz.mtl", data, size);
+  fuzz::write_scratch("fuzz.mtl", data, size);  // the library the fixed OBJ names
   const auto path =
       fuzz::write_scratch("fuzz_mtl.obj", reinterpret_cast<const std::uint8_t*>(obj.data()), obj.size());
-  Warnings warnings;
-  try {
-    fuzz::require_valid_scene(load_scene(path, warnings));
-  } catch (const InputError& e) {
-    fuzz::require_refusal_names_an_input(e.what());
-  }
+  fuzz::load_and_check(path);
   return 0;
 }

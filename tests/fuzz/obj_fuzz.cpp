@@ -6,16 +6,10 @@
 #include <cstdint>
 
 #include "fuzz_support.h"
-#include "renderer/scene/scene_loader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace kappa;
   const auto path = fuzz::write_scratch("fuzz.obj", data, size);
-  Warnings warnings;
-  try {
-    fuzz::require_valid_scene(load_scene(path, warnings));
-  } catch (const InputError& e) {
-    fuzz::require_refusal_names_an_input(e.what());
-  }
+  fuzz::load_and_check(path);
   return 0;
 }

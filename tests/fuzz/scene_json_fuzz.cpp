@@ -7,7 +7,6 @@
 #include <filesystem>
 
 #include "fuzz_support.h"
-#include "renderer/scene/scene_loader.h"
 
 namespace {
 
@@ -28,12 +27,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const bool linked = (link_asset_meshes(), true);
   (void)linked;
   const auto path = fuzz::write_scratch("scene.json", data, size);
-  Warnings warnings;
-  try {
-    fuzz::require_valid_scene(load_scene(path, warnings));
-  } catch (const InputError& e) {
-    // The message names the scene file, or the OBJ or MTL it refers to.
-    fuzz::require_refusal_names_an_input(e.what());
-  }
+  fuzz::load_and_check(path);
   return 0;
 }
