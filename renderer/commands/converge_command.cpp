@@ -122,7 +122,7 @@ Reference reference_for(const ConvergeOptions& options, const std::vector<Settin
                         bool show_progress) {
   Reference ref;
   if (!options.reference.empty()) {
-    ref.image = read_reference(options.reference);
+    ref.image = read_reference(options.reference, FilmSize{scene.width, scene.height});
     ref.path = options.reference;
   } else {
     const RenderOptions& base = options.render;
@@ -171,12 +171,8 @@ Reference reference_for(const ConvergeOptions& options, const std::vector<Settin
                  "kappa: converge: reference %s (%d spp, seed %llu): made by Kappa itself, it cannot reveal Kappa's "
                  "own bias; pass --reference with another renderer's image for that\n",
                  file.c_str(), ref.spp, static_cast<unsigned long long>(ref.seed));
-    ref.image = read_reference(file);
+    ref.image = read_reference(file, FilmSize{scene.width, scene.height});
   }
-  if (ref.image.width != scene.width || ref.image.height != scene.height)
-    throw InputError(ref.path + ": the reference is " + std::to_string(ref.image.width) + "x" +
-                     std::to_string(ref.image.height) + ", the film " + std::to_string(scene.width) + "x" +
-                     std::to_string(scene.height) + " (set --width and --height)");
   if (!ref.image.variance.empty()) ref.relmse_floor = relmse_floor(ref.image.variance, ref.image.rgb);
   return ref;
 }

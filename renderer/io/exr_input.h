@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 namespace kappa {
@@ -13,8 +14,16 @@ struct ReferenceImage {
   std::vector<float> variance;  ///< 3 per pixel, or empty without variance.R/G/B
 };
 
+/// The size a reference must have: the film it is compared with.
+struct FilmSize {
+  int width = 0, height = 0;
+};
+
 /// Throws InputError naming the file for a file OpenImageIO cannot read, one
-/// without R, G and B channels, or one with a non-finite or negative value.
-ReferenceImage read_reference(const std::filesystem::path& path);
+/// without R, G and B channels, one with a non-finite or negative value, and,
+/// from its header before any pixel is read, one whose size is not `film`'s
+/// (when given) or whose pixels would need more than the machine's memory:
+/// a few bytes of header can declare a window of 2^31 x 2^31.
+ReferenceImage read_reference(const std::filesystem::path& path, std::optional<FilmSize> film = std::nullopt);
 
 }  // namespace kappa
