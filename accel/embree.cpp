@@ -120,8 +120,9 @@ EmbreeAccelerator::EmbreeAccelerator(std::span<const Triangle> triangles, TaskPr
     // TBB build tasks. If this thread has not used TBB yet, TBB creates its
     // default task context right then and captures those settings, and every
     // later parallel_for from this thread (the whole render) would run with
-    // them. A no-op parallel_for first makes TBB capture the caller's own.
-    kappa::parallel_for(0, 1, [](int) {});
+    // them. A no-op TBB loop first makes TBB capture the caller's own (TBB's
+    // own, not kappa::parallel_for, which a TSan build runs on std::threads).
+    tbb::parallel_for(0, 1, [](int) {});
     if (progress) {
       progress->begin("embree: building the BVH", 1000);
       rtcSetSceneProgressMonitorFunction(
