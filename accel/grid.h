@@ -38,6 +38,41 @@ inline constexpr double kMarginUlps = 32.0;
 /// A quarter of physical memory: the default --grid-max-bytes.
 std::uint64_t default_grid_max_bytes();
 
+/// The box a grid over `triangles` tiles: the usable triangles' bounds
+/// inflated by the insertion margin (kMarginUlps of the coordinates'
+/// magnitude), and that margin. What a resolution chooser needs to know the
+/// cells a resolution gives before building.
+struct GridBox {
+  Vec3d lo, hi;
+  double margin = 0;
+  Vec3d extent() const { return hi - lo; }
+};
+GridBox grid_box(std::span<const Triangle> triangles);
+
+/// Theta_tot predicted by eq 19 (stats/cost_model.h) for cells of side `cell`,
+/// from sums over the triangles made once: eq 19 is linear in each
+/// triangle's extents and projected areas, so a chooser trying many
+/// resolutions pays O(N) once and O(1) per resolution.
+struct OccupancyModel {
+  double N = 0;          ///< usable triangles
+  Vec3d extent_sum;      ///< sum over triangles of their extent along each axis
+  Vec3d projected_sum;   ///< sum of their projected areas onto the planes normal to x, y, z
+  explicit OccupancyModel(std::span<const Triangle> triangles);
+  double theta_tot(const Vec3d& cell) const;
+};
+
+/// The rule that keeps a grid from exploding (10^4 copies of one large
+/// triangle, each in most cells): a resolution whose eq 19 Theta_tot exceeds
+/// kThetaBoundPerTriangle * N + N_c is lowered, for `auto` and the cost
+/// model's chooser alike, before anything is allocated. Real scenes stay far
+/// below (Theta_tot / N is 1.5 to 5 at lambda = 32 on ../shared/scenes).
+inline constexpr double kThetaBoundPerTriangle = 16.0;
+
+/// The most cells at or below `resolution`'s (near-cubic, by
+/// choose_resolution over `extent`) whose predicted Theta_tot keeps within the
+/// bound; `resolution` itself when it does.
+GridResolution bounded_resolution(const OccupancyModel& occupancy, const Vec3d& extent, GridResolution resolution);
+
 struct GridOptions {
   std::optional<GridResolution> resolution;  ///< nullopt = auto from density
   double density = kDefaultGridDensity;

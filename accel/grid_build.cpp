@@ -35,33 +35,76 @@ void for_each_chunk(std::size_t n, TaskProgress* progress, F&& f) {
 
 std::uint64_t default_grid_max_bytes() { return physical_memory_bytes() / 4; }
 
-UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions& options, TaskProgress* progress)
-    : m_triangles(triangles) {
-  const auto start = std::chrono::steady_clock::now();
-  if (triangles.size() >= std::size_t(kNoTriangle)) throw InputError("grid: more than 2^32 - 1 triangles");
-
+GridBox grid_box(std::span<const Triangle> triangles) {
   // Bounds of the usable triangles, in double.
-  std::vector<TriangleId> usable_ids;
-  usable_ids.reserve(triangles.size());
   Vec3d lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  for (TriangleId i = 0; i < TriangleId(triangles.size()); ++i) {
-    const Triangle& t = triangles[i];
+  bool any = false;
+  for (const Triangle& t : triangles) {
     if (!usable_triangle(t)) continue;
-    usable_ids.push_back(i);
+    any = true;
     for (const Vec3f& v : {t.v0, t.v1, t.v2}) {
       lo = min(lo, Vec3d(v));
       hi = max(hi, Vec3d(v));
     }
   }
+  if (!any) lo = hi = Vec3d{0, 0, 0};
+  GridBox box;
+  const double magnitude = std::max(max_component(abs(lo)), max_component(abs(hi))) + length(hi - lo);
+  box.margin = kMarginUlps * double(FLT_EPSILON) * std::max(magnitude, double(FLT_MIN));
+  box.lo = lo - Vec3d{box.margin, box.margin, box.margin};
+  box.hi = hi + Vec3d{box.margin, box.margin, box.margin};
+  return box;
+}
+
+OccupancyModel::OccupancyModel(std::span<const Triangle> triangles) {
+  for (const Triangle& t : triangles) {
+    if (!usable_triangle(t)) continue;
+    const Vec3d a(t.v0), b(t.v1), c(t.v2);
+    N += 1;
+    extent_sum = extent_sum + (max(a, max(b, c)) - min(a, min(b, c)));
+    // |n_a| * area is the area of the projection onto the plane normal to a.
+    projected_sum = projected_sum + abs(cross(b - a, c - a)) * 0.5;
+  }
+}
+
+double OccupancyModel::theta_tot(const Vec3d& l) const {
+  return N + extent_sum.x / l.x + extent_sum.y / l.y + extent_sum.z / l.z + projected_sum.x / (l.y * l.z) +
+         projected_sum.y / (l.x * l.z) + projected_sum.z / (l.x * l.y);
+}
+
+GridResolution bounded_resolution(const OccupancyModel& occupancy, const Vec3d& extent, GridResolution resolution) {
+  const auto within = [&](const GridResolution& r) {
+    const Vec3d cell{extent.x / r.nx, extent.y / r.ny, extent.z / r.nz};
+    const double predicted = occupancy.theta_tot(cell);
+    // Not finite: a zero-extent axis with one cell (a flat scene) is fine,
+    // l there is 0 only when every triangle is flat along it too.
+    return !(predicted > kThetaBoundPerTriangle * occupancy.N + double(r.cells()));
+  };
+  // Lower N_c by steps of 2^(1/4) until the prediction is within the bound.
+  double target = double(resolution.cells());
+  while (!within(resolution) && resolution.cells() > 1) {
+    target /= 1.189207115002721;  // 2^(1/4)
+    const GridResolution lower = choose_resolution(extent, std::max(1.0, target));
+    if (lower.cells() < resolution.cells()) resolution = lower;
+  }
+  return resolution;
+}
+
+UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions& options, TaskProgress* progress)
+    : m_triangles(triangles) {
+  const auto start = std::chrono::steady_clock::now();
+  if (triangles.size() >= std::size_t(kNoTriangle)) throw InputError("grid: more than 2^32 - 1 triangles");
+
+  std::vector<TriangleId> usable_ids;
+  usable_ids.reserve(triangles.size());
+  for (TriangleId i = 0; i < TriangleId(triangles.size()); ++i)
+    if (usable_triangle(triangles[i])) usable_ids.push_back(i);
   m_info.N = usable_ids.size();
   m_info.degenerate = triangles.size() - usable_ids.size();
-  if (usable_ids.empty()) {
-    lo = hi = Vec3d{0, 0, 0};
-  }
-  const double magnitude = std::max(max_component(abs(lo)), max_component(abs(hi))) + length(hi - lo);
-  m_info.margin = kMarginUlps * double(FLT_EPSILON) * std::max(magnitude, double(FLT_MIN));
-  m_info.lo = lo - Vec3d{m_info.margin, m_info.margin, m_info.margin};
-  m_info.hi = hi + Vec3d{m_info.margin, m_info.margin, m_info.margin};
+  const GridBox box = grid_box(triangles);
+  m_info.margin = box.margin;
+  m_info.lo = box.lo;
+  m_info.hi = box.hi;
   if (options.box) {
     m_info.lo = options.box->first;
     m_info.hi = options.box->second;
@@ -75,6 +118,7 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
     // budget allow (offsets and the fill pass's cursors: 8 bytes a cell).
     const double cap = std::min(double(std::numeric_limits<std::uint32_t>::max() - 2), double(options.max_bytes) / 16.0);
     m_info.resolution = choose_resolution(extent, std::clamp(options.density * double(m_info.N), 1.0, std::max(1.0, cap)));
+    m_info.resolution = bounded_resolution(OccupancyModel(triangles), extent, m_info.resolution);
   }
   const std::uint64_t cells = m_info.resolution.cells();
   // Offsets (with the occupancy bits) plus the fill pass's per-cell cursors.

@@ -5,6 +5,7 @@
 #include "renderer/commands/cast_command.h"
 #include "renderer/commands/converge_command.h"
 #include "renderer/commands/render_command.h"
+#include "renderer/commands/sweep_command.h"
 
 #include <csignal>
 
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
       int operator()(const kappa::BenchOptions& o) const { return kappa::run_bench(o); }
       int operator()(const kappa::CalibrateOptions& o) const { return kappa::run_calibrate(o); }
       int operator()(const kappa::ConvergeOptions& o) const { return kappa::run_converge(o); }
+      int operator()(const kappa::SweepOptions& o) const { return kappa::run_sweep(o); }
     };
     return std::visit(Run{}, command);
   });

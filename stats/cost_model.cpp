@@ -1,23 +1,14 @@
 #include "cost_model.h"
 
+#include "accel/grid.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace kappa {
 
 double theta_tot_eq19(std::span<const Triangle> triangles, const Vec3d& l) {
-  double total = 0;
-  for (const Triangle& t : triangles) {
-    if (!usable_triangle(t)) continue;
-    const Vec3d a(t.v0), b(t.v1), c(t.v2);
-    const Vec3d extent = max(a, max(b, c)) - min(a, min(b, c));
-    // |n_a| * area is the area of the projection onto the plane normal to a.
-    const Vec3d n2 = cross(b - a, c - a);  // twice the area, along the normal
-    const Vec3d projected = abs(n2) * 0.5;
-    total += 1.0 + extent.x / l.x + extent.y / l.y + extent.z / l.z + projected.x / (l.y * l.z) +
-             projected.y / (l.x * l.z) + projected.z / (l.x * l.y);
-  }
-  return total;
+  return OccupancyModel(triangles).theta_tot(l);
 }
 
 double theta_tot_eq21(std::span<const Triangle> triangles, const Vec3d& l) {

@@ -145,6 +145,37 @@ CLI::App* add_bench_command(CLI::App& app, BenchOptions& o) {
   return &bench;
 }
 
+/// `kappa sweep` and its flags, bound to `o`.
+CLI::App* add_sweep_command(CLI::App& app, SweepOptions& o) {
+  CLI::App& sweep = *app.add_subcommand(
+      "sweep", "the grid's cost against its resolution: bench's rays timed and counted at each, beside the models");
+  sweep.add_option("scene", o.scene, "scene.json or .obj file")->required();
+  sweep.add_option("--grid-density", o.grid_density,
+                   "A:B: lambda (cells per triangle) from A to B, N_c = lambda N (default 1:1024)");
+  sweep.add_option("--grid-res", o.grid_res, "A:B: N_c from A^3 to B^3, instead of --grid-density");
+  sweep.add_option("--steps", o.steps, "resolutions, geometric in N_c")->check(CLI::Range(1, 1000))->capture_default_str();
+  sweep.add_option("--rays", o.rays, "ray classes (kappa bench's sets)")
+      ->delimiter(',')
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->check(CLI::IsMember({"camera", "bounce", "shadow", "lines"}))
+      ->capture_default_str();
+  sweep.add_option("--n", o.n, "rays per class")->check(CLI::Range(std::size_t(1), std::size_t(1) << 28))->capture_default_str();
+  sweep.add_option("--repeat", o.repeat, "timed passes per resolution and class (the median is reported)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  sweep.add_option("--threads", o.threads, "threads tracing each timed pass")->check(CLI::Range(1, 4096))->capture_default_str();
+  sweep.add_option("--seed", o.seed, "random seed of the ray sets")->check(whole_number(0, kMaxSeed))->capture_default_str();
+  sweep.add_option("--grid-max-bytes", o.grid_max_bytes,
+                   "skip resolutions whose grid would exceed this many bytes (default: a quarter of RAM)")
+      ->check(whole_number(1, std::numeric_limits<std::uint64_t>::max()));
+  sweep.add_option("--calibration", o.calibration,
+                   "cost-model constants from kappa calibrate (default: beside the executable, else built in)");
+  sweep.add_option("--json", o.json, "write every point as JSON");
+  sweep.add_option("--plot", o.plot, "plot measured and predicted cost against N_c to F.png (python3-matplotlib)");
+  sweep.add_flag("-q,--quiet", o.quiet, "no progress line, no table");
+  return &sweep;
+}
+
 /// `kappa cast` and its flags, bound to `o`.
 CLI::App* add_cast_command(CLI::App& app, CastOptions& o) {
   CLI::App& cast = *app.add_subcommand("cast", "cast synthetic or renderer rays with statistics on (kappa, p_tot, ...)");
@@ -206,10 +237,12 @@ std::optional<int> parse_command_line(int argc, char** argv, Command& command) {
   CastOptions cast_options;
   CalibrateOptions calibrate_options;
   ConvergeOptions converge_options;
+  SweepOptions sweep_options;
   const CLI::App* render = add_render_command(app, render_options);
   const CLI::App* converge = add_converge_command(app, converge_options);
   const CLI::App* bench = add_bench_command(app, bench_options);
   const CLI::App* cast = add_cast_command(app, cast_options);
+  const CLI::App* sweep = add_sweep_command(app, sweep_options);
   add_calibrate_command(app, calibrate_options);
 
   try {
@@ -231,7 +264,8 @@ std::optional<int> parse_command_line(int argc, char** argv, Command& command) {
   else if (bench->parsed()) command = std::move(bench_options);
   else if (cast->parsed()) command = std::move(cast_options);
   else if (converge->parsed()) command = std::move(converge_options);
-  else command = std::move(calibrate_options);  // require_subcommand(1): one of the four
+  else if (sweep->parsed()) command = std::move(sweep_options);
+  else command = std::move(calibrate_options);  // require_subcommand(1): one of the six
   return std::nullopt;
 }
 

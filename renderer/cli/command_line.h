@@ -12,7 +12,7 @@
 
 namespace kappa {
 
-using Command = std::variant<RenderOptions, CastOptions, BenchOptions, CalibrateOptions, ConvergeOptions>;
+using Command = std::variant<RenderOptions, CastOptions, BenchOptions, CalibrateOptions, ConvergeOptions, SweepOptions>;
 
 /// Parses argv into `command`. Returns the exit code when the process should
 /// end here: after --help or --version (0), or for bad options (2, with one

@@ -102,3 +102,24 @@ struct ConvergeOptions {
 };
 
 }  // namespace kappa
+
+namespace kappa {
+
+struct SweepOptions {
+  std::string scene;
+  std::string grid_density;  ///< "A:B": lambda from A to B (the default, 1:1024, when neither range is given)
+  std::string grid_res;      ///< "A:B": N_c from A^3 to B^3
+  int steps = 11;            ///< points, geometric in N_c
+  std::vector<std::string> rays = {"camera", "bounce", "shadow", "lines"};
+  std::size_t n = std::size_t(1) << 18;  ///< rays per class
+  int repeat = 3;            ///< timed passes per point and class (the median is reported)
+  int threads = 1;           ///< threads tracing each timed pass (seconds per ray are thread-seconds at 1)
+  std::uint64_t seed = 0;
+  std::uint64_t grid_max_bytes = 0;  ///< a point whose grid would exceed it is skipped; 0 = a quarter of RAM
+  std::string calibration;   ///< cost-model constants (default: beside the executable, else built in)
+  std::string json;
+  std::string plot;
+  bool quiet = false;
+};
+
+}  // namespace kappa

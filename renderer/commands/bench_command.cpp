@@ -15,6 +15,7 @@
 #include "renderer/cli/progress.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/output_guard.h"
+#include "renderer/render/ray_timing.h"
 #include "renderer/render/ray_sets.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/util/error.h"
@@ -34,41 +35,12 @@ struct Built {
   std::uint64_t bytes = 0;
 };
 
-/// Seconds to trace every ray of `set` once with `threads` threads, each
-/// query made as the render's stats-off frame makes it (the accelerator as
-/// visit_accelerator gives it).
-template <class A>
-double time_pass(const A& accel, const RaySet& set, tbb::task_arena& arena, std::uint64_t& hits) {
-  std::atomic<std::uint64_t> found{0};
-  const auto start = std::chrono::steady_clock::now();
-  arena.execute([&] {
-    kappa::parallel_for(tbb::blocked_range<std::size_t>(0, set.rays.size(), 4096), [&](const auto& range) {
-      std::uint64_t local = 0;
-      if (set.occlusion) {
-        for (std::size_t i = range.begin(); i < range.end(); ++i) local += accel.any_hit(set.rays[i]);
-      } else {
-        for (std::size_t i = range.begin(); i < range.end(); ++i) local += accel.closest_hit(set.rays[i]).has_value();
-      }
-      found.fetch_add(local, std::memory_order_relaxed);
-    });
-  });
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  hits = found.load();
-  return s;
-}
-
 struct Result {
   std::string accel, rays;
   int threads = 1;
   double median = 0, min = 0, max = 0;  ///< Mrays/s
   std::uint64_t hits = 0;
 };
-
-double median_of(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
 
 }  // namespace
 

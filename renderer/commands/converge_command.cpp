@@ -23,6 +23,7 @@
 #include "renderer/io/exr_input.h"
 #include "renderer/io/exr_output.h"
 #include "renderer/io/output_guard.h"
+#include "renderer/io/plot_script.h"
 #include "renderer/render/frame_accumulator.h"
 #include "renderer/render/integrator.h"
 #include "renderer/render/sampler_kind.h"
@@ -269,31 +270,6 @@ std::string ranking_table(const std::vector<ConvergeCurve>& curves, const std::v
   return out;
 }
 
-/// Runs tools/converge_plot.py with /usr/bin/python3 (where Debian's
-/// matplotlib lives) with `args`: --check before any rendering (is it all
-/// there?), then JSON PNG.
-void run_plot_script(const std::vector<std::string>& args) {
-  const std::string script = std::string(KAPPA_TOOLS_DIR) + "/converge_plot.py";
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(script, ec)) throw InputError("--plot: " + script + " not found");
-  std::vector<const char*> argv = {"/usr/bin/python3", script.c_str()};
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  argv.push_back(nullptr);
-  const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("--plot: cannot start /usr/bin/python3: fork failed");
-  if (pid == 0) {
-    execv(argv[0], const_cast<char* const*>(argv.data()));
-    _exit(127);
-  }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) throw std::runtime_error("--plot: lost track of /usr/bin/python3");
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  if (code == 127) throw InputError("--plot: /usr/bin/python3 is missing (run tools/setup.sh)");
-  if (code == 3) throw InputError("--plot: python3-matplotlib is missing for /usr/bin/python3 (run tools/setup.sh)");
-  if (code != 0) throw std::runtime_error("--plot: " + script + " failed (exit " + std::to_string(code) + ")");
-}
-
 }  // namespace
 
 int run_converge(const ConvergeOptions& options) {
@@ -331,7 +307,7 @@ int run_converge(const ConvergeOptions& options) {
   std::unique_ptr<AtomicOutput> plot_json;
   if (plot_out && (!json_out || json_out->direct()))
     plot_json = std::make_unique<AtomicOutput>(plot_out->temp_path().string() + ".json");
-  if (plot_out) run_plot_script({"--check"});  // a missing matplotlib fails now, not after the renders
+  if (plot_out) run_plot_script("converge_plot.py", {"--check"});  // a missing matplotlib fails now, not after the renders
 
   const Reference ref = reference_for(options, settings, scene, show_progress);
   std::vector<ConvergeCurve> curves;
@@ -372,7 +348,7 @@ int run_converge(const ConvergeOptions& options) {
   if (json_out) write_temporary(*json_out, text);
   if (plot_json) write_temporary(*plot_json, text);
   if (plot_out)
-    run_plot_script({(plot_json ? plot_json->temp_path() : json_out->temp_path()).string(), plot_out->temp_path().string()});
+    run_plot_script("converge_plot.py", {(plot_json ? plot_json->temp_path() : json_out->temp_path()).string(), plot_out->temp_path().string()});
   {
     const SignalsHeld held;
     if (json_out) json_out->commit();

@@ -336,6 +336,59 @@ TEST(Grid, NonFiniteRaysMissLikeNaive) {
   }
 }
 
+TEST(Grid, AutoResolutionBoundsThetaForCopiesOfOneLargeTriangle) {
+  // 10^4 copies of one triangle spanning its box: at lambda = 32 (3.2e5 cells)
+  // each copy would sit in thousands of cells. The bound lowers N_c before
+  // anything is allocated.
+  const Triangle big{{-1, -1, -1}, {1, -1, 1}, {0, 1, 0}};
+  const std::vector<Triangle> copies(10000, big);
+  const UniformGrid grid(copies, GridOptions{});
+  const GridInfo& info = grid.info();
+  const double bound = kThetaBoundPerTriangle * 10000 + double(info.resolution.cells());
+  EXPECT_LE(double(info.theta_tot), 1.5 * bound) << info.resolution.to_string();  // eq 19 predicts it within rounding
+  EXPECT_LT(info.resolution.cells(), 1000u) << info.resolution.to_string();
+  EXPECT_GT(info.resolution.cells(), 1u) << info.resolution.to_string();
+  // An explicit resolution is taken as given (the user asked for it).
+  GridOptions explicit_res;
+  explicit_res.resolution = GridResolution{20, 20, 20};
+  EXPECT_EQ(UniformGrid(std::span(copies).first(10), explicit_res).info().resolution, (GridResolution{20, 20, 20}));
+}
+
+TEST(Grid, ThetaBoundLeavesRealScenesAtLambdaTimesN) {
+  for (const auto& obj : {test::assets_dir() / "bunny-lowres" / "bunny_lowres.obj"}) {
+    const std::vector<Triangle> mesh = test::load_mesh(obj);
+    const UniformGrid grid(mesh, GridOptions{});
+    const Vec3d extent = grid.info().hi - grid.info().lo;
+    EXPECT_EQ(grid.info().resolution, choose_resolution(extent, kDefaultGridDensity * double(mesh.size()))) << obj;
+  }
+}
+
+TEST(Grid, OccupancyModelIsEq19SummedTriangleByTriangle) {
+  const std::vector<Triangle> soup = test::random_soup(500, 3, 0.2f);
+  const OccupancyModel model(soup);
+  EXPECT_EQ(model.N, 500.0);
+  const Vec3d l{0.1, 0.05, 0.2};
+  double expected = 0;  // eq 19 per triangle: 1 + sum_a L_a / l_a + sum_{a<b} A_ab / (l_a l_b)
+  for (const Triangle& t : soup) {
+    const Vec3d a(t.v0), b(t.v1), c(t.v2);
+    const Vec3d L = max(a, max(b, c)) - min(a, min(b, c));
+    const Vec3d A = abs(cross(b - a, c - a)) * 0.5;
+    expected += 1 + L.x / l.x + L.y / l.y + L.z / l.z + A.x / (l.y * l.z) + A.y / (l.x * l.z) + A.z / (l.x * l.y);
+  }
+  EXPECT_NEAR(model.theta_tot(l), expected, 1e-9 * expected);
+  // Within the bound, bounded_resolution changes nothing; far outside, it lowers N_c until within.
+  const Vec3d extent{2, 2, 2};
+  EXPECT_EQ(bounded_resolution(model, extent, GridResolution{8, 8, 8}), (GridResolution{8, 8, 8}));
+  const std::vector<Triangle> copies(1000, Triangle{{-1, -1, 0}, {1, -1, 0}, {0, 1, 0.5f}});
+  const OccupancyModel big(copies);
+  const GridResolution lowered = bounded_resolution(big, extent, GridResolution{64, 64, 64});
+  const Vec3d cell{2.0 / lowered.nx, 2.0 / lowered.ny, 2.0 / lowered.nz};
+  EXPECT_LE(big.theta_tot(cell), kThetaBoundPerTriangle * 1000 + double(lowered.cells())) << lowered.to_string();
+  const Vec3d before{2.0 / 64, 2.0 / 64, 2.0 / 64};
+  EXPECT_GT(big.theta_tot(before), kThetaBoundPerTriangle * 1000 + 64.0 * 64 * 64);  // it was outside
+  EXPECT_LT(lowered.cells(), 64u * 64u * 64u);
+}
+
 }  // namespace
 }  // namespace kappa
 

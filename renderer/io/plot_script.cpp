@@ -1,0 +1,36 @@
+#include "renderer/io/plot_script.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <filesystem>
+#include <stdexcept>
+
+#include "renderer/util/error.h"
+
+namespace kappa {
+
+void run_plot_script(const std::string& script_name, const std::vector<std::string>& args) {
+  const std::string script = std::string(KAPPA_TOOLS_DIR) + "/" + script_name;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(script, ec)) throw InputError("--plot: " + script + " not found");
+  std::vector<const char*> argv = {"/usr/bin/python3", script.c_str()};
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("--plot: cannot start /usr/bin/python3: fork failed");
+  if (pid == 0) {
+    execv(argv[0], const_cast<char* const*>(argv.data()));
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) throw std::runtime_error("--plot: lost track of /usr/bin/python3");
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  if (code == 127) throw InputError("--plot: /usr/bin/python3 is missing (run tools/setup.sh)");
+  if (code == 3) throw InputError("--plot: python3-matplotlib is missing for /usr/bin/python3 (run tools/setup.sh)");
+  if (code != 0) throw std::runtime_error("--plot: " + script + " failed (exit " + std::to_string(code) + ")");
+}
+
+}  // namespace kappa
