@@ -12,6 +12,9 @@ namespace kappa {
 std::uint64_t AccelOptions::max_bytes() const { return grid_max_bytes > 0 ? grid_max_bytes : default_grid_max_bytes(); }
 
 GridOptions grid_options(const AccelOptions& options) {
+  if (options.grid_res == "model")
+    throw InputError("--grid-res model: only kappa render chooses by the cost model (from a pilot of its frame); "
+                     "use auto, N or NxNxN here");
   GridOptions grid;
   grid.resolution = parse_grid_resolution(options.grid_res);
   if (options.grid_density > 0) grid.density = options.grid_density;

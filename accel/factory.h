@@ -19,7 +19,7 @@ namespace kappa {
 /// Build settings of the accelerators that have any: what --grid-res,
 /// --grid-density and --grid-max-bytes set, for every command alike.
 struct AccelOptions {
-  std::string grid_res = "auto";  ///< "auto", "N" or "NxNxN"
+  std::string grid_res = "auto";  ///< "auto", "N" or "NxNxN"; "model" in kappa render (renderer/render/grid_choice.h)
   double grid_density = 0;        ///< lambda in N_c = lambda * N for "auto"; 0 = the grid's default
   std::uint64_t grid_max_bytes = 0;  ///< refuse grids larger than this; 0 = the default (a quarter of RAM)
 

@@ -136,6 +136,13 @@ class UniformGrid final : public Accelerator, public CellLayout {
   /// every triangle met (no stop at a hit); returns the closest hit.
   template <class Recorder>
   std::optional<Hit> walk_whole(const Ray& ray, Recorder& recorder) const;
+  /// The cells, lists and (mailboxed) tests a closest-hit walk of `ray`
+  /// makes, reported to `recorder` as that walk reports them, when its hit
+  /// is known (`t_hit`, from another exact accelerator; nullopt for a miss):
+  /// no triangle is tested. What a resolution chooser counts on a
+  /// candidate grid from a pilot's rays.
+  template <class Recorder>
+  void count_closest_walk(const Ray& ray, std::optional<float> t_hit, Recorder& recorder) const;
 
   const GridInfo& info() const { return m_info; }
   std::uint64_t cell_index(int ix, int iy, int iz) const {
@@ -148,7 +155,7 @@ class UniformGrid final : public Accelerator, public CellLayout {
   }
 
  private:
-  template <GridWalk Mode, class Recorder>
+  template <GridWalk Mode, class Recorder, bool TestTriangles = true>
   bool traverse(const Ray& ray, Hit& best, Recorder& recorder) const;
 
   std::span<const Triangle> m_triangles;

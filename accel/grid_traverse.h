@@ -42,7 +42,7 @@ class Mailbox {
 
 }  // namespace detail
 
-template <GridWalk Mode, class Recorder>
+template <GridWalk Mode, class Recorder, bool TestTriangles>
 bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const {
   constexpr bool AnyHit = Mode == GridWalk::any;
   constexpr bool Whole = Mode == GridWalk::whole;
@@ -156,7 +156,9 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
         }
         recorder.test();
         ++counts.tests;
-        if constexpr (AnyHit) {
+        if constexpr (!TestTriangles) {
+          continue;  // counting only: `best` already holds the hit the walk would find
+        } else if constexpr (AnyHit) {
           float t, b0, b1, b2;
           if (intersect_triangle(prepared, m_triangles[id], ray.tmin, ray.tmax, t, b0, b1, b2)) {
             recorder.hit();
@@ -210,6 +212,18 @@ template <class Recorder>
 bool UniformGrid::any_hit(const Ray& ray, Recorder& recorder) const {
   Hit unused;
   return traverse<GridWalk::any>(ray, unused, recorder);
+}
+
+template <class Recorder>
+void UniformGrid::count_closest_walk(const Ray& ray, std::optional<float> t_hit, Recorder& recorder) const {
+  // With the final hit in `best` from the start, the walk stops at the cell
+  // where the real one stops: the real walk's best only falls to this t, and
+  // the triangle that gives it is tested no later than in the cell that
+  // holds the hit point, whose exit is the first beyond it.
+  Hit best;
+  best.t = t_hit.value_or(ray.tmax);
+  best.triangle = t_hit ? 0 : kNoTriangle;
+  traverse<GridWalk::closest, Recorder, false>(ray, best, recorder);
 }
 
 template <class Recorder>

@@ -19,7 +19,8 @@ Calibration fit_calibration(std::span<const TimedLoad> measurements) {
   return c;
 }
 
-nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> measurements) {
+nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> measurements,
+                               std::span<const TimedBuild> builds) {
   nlohmann::ordered_json j;
   j["format"] = kCalibrationFormat;
   j["machine"] = c.machine;
@@ -27,6 +28,7 @@ nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> 
   j["samples"] = c.samples;
   j["eq10"] = to_json(c.eq10);
   j["extended"] = to_json(c.extended);
+  j["build"] = to_json(c.build);
   if (!measurements.empty()) {
     j["measurements"] = nlohmann::ordered_json::array();
     for (const TimedLoad& m : measurements) {
@@ -44,6 +46,16 @@ nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> 
                                    {"eq10_ns_per_ray", c.eq10.seconds(m.load) / r * 1e9},
                                    {"extended_ns_per_ray", c.extended.seconds(m.load) / r * 1e9}});
     }
+  }
+  if (!builds.empty()) {
+    j["builds"] = nlohmann::ordered_json::array();
+    for (const TimedBuild& b : builds)
+      j["builds"].push_back({{"label", b.label},
+                             {"N", b.N},
+                             {"theta_tot", b.theta_tot},
+                             {"N_c", b.cells},
+                             {"seconds", b.seconds},
+                             {"predicted_s", c.build.seconds(b.N, b.theta_tot, b.cells, c.build.threads)}});
   }
   return j;
 }
@@ -87,11 +99,14 @@ std::optional<Calibration> load_calibration(const std::filesystem::path& file) {
   if (!j.is_object() || j.value("format", 0) != kCalibrationFormat)
     throw InputError(file.string() + ": a calibration of another format (made by another Kappa): run kappa calibrate again");
   Calibration c;
-  if (!from_json(j.value("eq10", nlohmann::json()), c.eq10) || !from_json(j.value("extended", nlohmann::json()), c.extended))
-    throw InputError(file.string() + ": not a Kappa calibration (expected eq10 and extended constants, each a number >= 0)");
+  if (!from_json(j.value("eq10", nlohmann::json()), c.eq10) || !from_json(j.value("extended", nlohmann::json()), c.extended) ||
+      !from_json(j.value("build", nlohmann::json()), c.build))
+    throw InputError(file.string() +
+                     ": not a Kappa calibration (expected eq10, extended and build constants, each a number >= 0)");
   c.samples = j.value("samples", std::size_t(0));
   c.machine = j.value("machine", std::string());
   c.clock = j.value("clock", std::string());
+  c.source = file.string();
   return c;
 }
 

@@ -10,20 +10,23 @@
 
 #include <nlohmann/json.hpp>
 
+#include "build_model.h"
 #include "time_model.h"
 
 namespace kappa {
 
 /// The calibration file's format; files of another one were made by another
 /// Kappa and are refused with a word to run `kappa calibrate` again.
-inline constexpr int kCalibrationFormat = 3;
+inline constexpr int kCalibrationFormat = 4;
 
 struct Calibration {
   TimeModel eq10 = eq10_model();
   TimeModel extended = extended_model(l2_cache_bytes());
+  BuildModel build;  ///< the grid's build time (format 4 on), for --grid-res model
   std::size_t samples = 0;
   std::string machine;  ///< what it was measured on
   std::string clock;    ///< the QueryClock's source ("tsc", "steady_clock")
+  std::string source;   ///< the file it was read from, or "built-in" (builtin_calibration.h)
 };
 
 /// Fits both models to the measurements. Throws std::runtime_error (an
@@ -32,7 +35,8 @@ struct Calibration {
 /// constants.
 Calibration fit_calibration(std::span<const TimedLoad> measurements);
 
-nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> measurements = {});
+nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> measurements = {},
+                               std::span<const TimedBuild> builds = {});
 /// kappa_calibration.json beside the running executable (build/ for a build
 /// tree): where `kappa calibrate` writes and `kappa render` looks by default.
 std::filesystem::path default_calibration_path();

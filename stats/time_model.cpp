@@ -154,21 +154,22 @@ double TimeModel::seconds(const QueryLoad& load) const {
   return ns_per_ray * 1e-9 * load.rays;
 }
 
-void fit(TimeModel& model, std::span<const TimedLoad> measurements) {
-  if (measurements.size() < 3) throw std::runtime_error("calibration: at least 3 measurements are needed");
-  const std::size_t n = model.terms.size();
-  // Normal equations of the relative error: rows f/t (per ray), target 1.
+std::vector<double> fit_relative(const std::vector<std::vector<double>>& features, const std::vector<double>& values,
+                                 const std::vector<std::string>& labels, const std::string& what, double& rms) {
+  if (features.size() < 3) throw std::runtime_error("calibration: at least 3 measurements are needed");
+  const std::size_t n = features.front().size();
+  // Normal equations of the relative error: rows f/t, target 1.
   std::vector<std::vector<double>> normal(n, std::vector<double>(n, 0.0));
   std::vector<double> rhs(n, 0.0);
   std::vector<std::vector<double>> rows;
-  for (const TimedLoad& m : measurements) {
-    const double t_ns = m.seconds / m.load.rays * 1e9;
-    if (!(t_ns > 0) || !std::isfinite(t_ns))
-      throw std::runtime_error("calibration: measurement '" + m.label + "' is not a positive finite time");
-    std::vector<double> row = model.features_per_ray(m.load);
+  for (std::size_t m = 0; m < features.size(); ++m) {
+    const double t = values[m];
+    if (!(t > 0) || !std::isfinite(t))
+      throw std::runtime_error("calibration: measurement '" + labels[m] + "' is not a positive finite time");
+    std::vector<double> row = features[m];
     for (double& v : row) {
-      if (!std::isfinite(v)) throw std::runtime_error("calibration: measurement '" + m.label + "' has a non-finite count");
-      v /= t_ns;
+      if (!std::isfinite(v)) throw std::runtime_error("calibration: measurement '" + labels[m] + "' has a non-finite count");
+      v /= t;
     }
     for (std::size_t i = 0; i < n; ++i) {
       for (std::size_t j = 0; j < n; ++j) normal[i][j] += row[i] * row[j];
@@ -185,17 +186,29 @@ void fit(TimeModel& model, std::span<const TimedLoad> measurements) {
     }
     return sum;
   };
-  // Every constant must be determined by the measurements (a term no ray set
-  // varies apart from the others would take an arbitrary share).
+  // Every constant must be determined by the measurements (a term no
+  // measurement varies apart from the others would take an arbitrary share).
   std::vector<int> all(n);
   for (std::size_t i = 0; i < n; ++i) all[i] = int(i);
   std::vector<double> x(n, 0.0);
   if (!solve_passive(normal, rhs, all, x))
-    throw std::runtime_error("calibration: the measurements do not determine the " + model.name + " model's constants");
+    throw std::runtime_error("calibration: the measurements do not determine the " + what + " constants");
   const std::vector<double> best_x = nnls(normal, rhs);
-  const double best = residual(best_x);
-  model.ns = best_x;
-  model.rms_relative_error = std::sqrt(best / double(rows.size()));
+  rms = std::sqrt(residual(best_x) / double(rows.size()));
+  return best_x;
+}
+
+void fit(TimeModel& model, std::span<const TimedLoad> measurements) {
+  std::vector<std::vector<double>> features;
+  std::vector<double> ns_per_ray;
+  std::vector<std::string> labels;
+  for (const TimedLoad& m : measurements) {
+    features.push_back(model.features_per_ray(m.load));
+    ns_per_ray.push_back(m.seconds / m.load.rays * 1e9);
+    labels.push_back(m.label);
+  }
+  if (measurements.size() < 3) throw std::runtime_error("calibration: at least 3 measurements are needed");
+  model.ns = fit_relative(features, ns_per_ray, labels, model.name + " model's", model.rms_relative_error);
 }
 
 nlohmann::ordered_json to_json(const TimeModel& model) {

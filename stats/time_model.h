@@ -94,6 +94,14 @@ struct TimedLoad {
 /// not determine every constant.
 void fit(TimeModel& model, std::span<const TimedLoad> measurements);
 
+/// The constants c >= 0 minimising sum_m (features_m . c / values_m - 1)^2,
+/// the relative error, by Lawson-Hanson NNLS; `rms` gets the fit's rms
+/// relative error. Throws std::runtime_error naming `what` (and a label) with
+/// fewer than 3 rows, a value that is not positive and finite, a non-finite
+/// feature, or rows that do not determine every constant.
+std::vector<double> fit_relative(const std::vector<std::vector<double>>& features, const std::vector<double>& values,
+                                 const std::vector<std::string>& labels, const std::string& what, double& rms);
+
 nlohmann::ordered_json to_json(const TimeModel& model);
 /// Reads what to_json wrote; false if `j` is not such a model.
 bool from_json(const nlohmann::json& j, TimeModel& model);

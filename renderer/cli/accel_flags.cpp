@@ -17,9 +17,10 @@ namespace kappa {
 namespace {
 
 /// --grid-res checked while parsing, with parse_grid_resolution's reason.
-CLI::Validator grid_resolution_validator() {
+CLI::Validator grid_resolution_validator(bool model_allowed) {
   return CLI::Validator(
-      [](std::string& value) {
+      [model_allowed](std::string& value) {
+        if (model_allowed && value == "model") return std::string();
         try {
           parse_grid_resolution(value);
           return std::string();
@@ -28,7 +29,7 @@ CLI::Validator grid_resolution_validator() {
           return reason.substr(reason.find(": ") + 2);
         }
       },
-      "auto|N|NxNxN");
+      model_allowed ? "model|auto|N|NxNxN" : "auto|N|NxNxN");
 }
 
 }  // namespace
@@ -77,9 +78,12 @@ void add_accel_list_flag(CLI::App& app, std::vector<std::string>& accels, const 
       ->capture_default_str();
 }
 
-void add_grid_flags(CLI::App& app, AccelOptions& build) {
-  app.add_option("--grid-res", build.grid_res, "grid resolution: auto, N (cubic) or NxNxN")
-      ->check(grid_resolution_validator())
+void add_grid_flags(CLI::App& app, AccelOptions& build, bool model_allowed) {
+  app.add_option("--grid-res", build.grid_res,
+                 model_allowed ? "grid resolution: model (the cost model's choice from a pilot of the frame), auto, "
+                                 "N (cubic) or NxNxN"
+                               : "grid resolution: auto, N (cubic) or NxNxN")
+      ->check(grid_resolution_validator(model_allowed))
       ->capture_default_str();
   app.add_option("--grid-density", build.grid_density, "cells per triangle for --grid-res auto (default 32)")
       ->check(finite_number(1e-6, 1e6));

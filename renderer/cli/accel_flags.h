@@ -16,8 +16,9 @@ void add_accel_flag(CLI::App& app, std::string& accel, const std::string& help);
 /// --accel A,B,..., each one of accelerator_names().
 void add_accel_list_flag(CLI::App& app, std::vector<std::string>& accels, const std::string& help);
 
-/// --grid-res, --grid-density and --grid-max-bytes into `build`.
-void add_grid_flags(CLI::App& app, AccelOptions& build);
+/// --grid-res, --grid-density and --grid-max-bytes into `build`; with
+/// `model_allowed` (kappa render) --grid-res also takes `model`.
+void add_grid_flags(CLI::App& app, AccelOptions& build, bool model_allowed = false);
 /// --grid-max-bytes alone, for commands that set the resolution otherwise.
 void add_grid_max_bytes_flag(CLI::App& app, AccelOptions& build);
 

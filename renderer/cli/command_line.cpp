@@ -19,7 +19,7 @@ namespace {
 /// and --spp are its own).
 void add_render_flags(CLI::App& render, RenderOptions& o, bool converge) {
   add_accel_flag(render, o.accel, "accelerator");
-  add_grid_flags(render, o.build);
+  add_grid_flags(render, o.build, !converge);
   if (!converge)
     render.add_option("--spp", o.spp, "samples per pixel (with a budget: the most, if given)")
         ->check(CLI::Range(1, 1 << 20))

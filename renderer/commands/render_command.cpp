@@ -26,6 +26,7 @@
 #include "renderer/io/exr_output.h"
 #include "renderer/io/output_guard.h"
 #include "renderer/render/frame_accumulator.h"
+#include "renderer/render/grid_choice.h"
 #include "renderer/render/integrator.h"
 #include "renderer/render/sampler_kind.h"
 #include "renderer/report/render_record.h"
@@ -34,6 +35,7 @@
 #include "renderer/scene/scene_loader.h"
 #include "renderer/util/error.h"
 #include "renderer/version.h"
+#include "stats/builtin_calibration.h"
 #include "stats/calibration.h"
 
 namespace kappa {
@@ -131,6 +133,9 @@ int run_render(const RenderOptions& options) {
                                                                             ext != ".png")
     throw InputError("--cell-map: '" + options.cell_map + "' must end in .exr or .png");
   RenderSettings settings = render_settings_of(options, aov);  // a bad setting is refused before loading
+  const bool grid_by_model = options.build.grid_res == "model";
+  if (grid_by_model && options.accel != "grid")
+    throw InputError("--grid-res model: needs --accel grid (it chooses the grid's resolution)");
   if (aov.cost && (options.stats != "on" || options.accel != "grid"))
     throw InputError("--aov cost: needs --accel grid and --stats on (it counts the grid's cells and tests)");
   if (!options.out.empty() && std::filesystem::path(options.out).extension() != ".exr")
@@ -174,11 +179,27 @@ int run_render(const RenderOptions& options) {
     calibration = load_calibration(calibration_path);
   if (!calibration && !options.calibration.empty())
     throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
+  // Without a file, the constants fitted on the project's machines: the
+  // report's predictions and --grid-res model work on a fresh clone, silently.
+  if (!calibration) calibration = builtin_calibration();
 
   const auto build_start = std::chrono::steady_clock::now();
-  const std::unique_ptr<Accelerator> accel = with_progress(show_progress, [&](TaskProgress* progress) {
-    return make_accelerator(options.accel, scene.triangles, options.build, progress);
-  });
+  std::unique_ptr<Accelerator> accel;
+  std::optional<GridChoice> grid_choice;
+  if (grid_by_model) {
+    // The frame's paths: its pixels at --spp (a budget's cap, or the default
+    // 64 when a budget decides how many).
+    const double frame_paths = double(scene.width) * double(scene.height) * double(options.spp);
+    grid_choice = with_progress(show_progress, [&](TaskProgress* progress) {
+      begin_phase(progress, "grid: choosing the resolution by the cost model", 0);
+      return choose_grid_by_model(scene, settings, frame_paths, options.build, *calibration, calibration->source);
+    });
+    accel = std::move(grid_choice->grid);
+  } else {
+    accel = with_progress(show_progress, [&](TaskProgress* progress) {
+      return make_accelerator(options.accel, scene.triangles, options.build, progress);
+    });
+  }
   const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   const int threads = active_threads();
@@ -254,11 +275,12 @@ int run_render(const RenderOptions& options) {
                                    {"kappa:accel_build_s", build_s},
                                    {"kappa:rays", double(result.rays)}});
   write_exr(output.temp_path(), film, metadata, output.target());
-  const nlohmann::ordered_json report =
+  nlohmann::ordered_json report =
       render_report(scene, *accel,
                     FrameFacts{scene.width, scene.height, result.spp, threads, options.seed, budget.time_s,
                                budget.target_relmse},
                     result, calibration, to_json(record));
+  if (grid_choice) report["grid_choice"] = grid_choice->report;
 
   if (cell_map_out && result.counters) {
     if (result.counters->classes[0].per_cell()) {
@@ -281,11 +303,11 @@ int run_render(const RenderOptions& options) {
   if (!options.quiet) {
     if (const CellLayout* cells = accel->cells()) {
       const nlohmann::ordered_json own = report.value(std::string(accel->name()), nlohmann::ordered_json::object());
-      std::fprintf(stderr, "kappa: %s %s, N_c %llu, N %s, theta_tot %s, %s, built in %.3f s\n",
+      std::fprintf(stderr, "kappa: %s %s, N_c %llu, N %s, theta_tot %s, %s, built in %.3f s%s%s\n",
                    std::string(accel->name()).c_str(), cells->resolution_text().c_str(),
                    static_cast<unsigned long long>(cells->cell_count()), own.value("N", nlohmann::ordered_json()).dump().c_str(),
                    own.value("theta_tot", nlohmann::ordered_json()).dump().c_str(), byte_size(accel->bytes()).c_str(),
-                   accel->build_s());
+                   accel->build_s(), grid_choice ? ", " : "", grid_choice ? grid_choice->summary.c_str() : "");
     }
     std::fprintf(stderr, "kappa: %s %dx%d, %d spp, %s, %d threads: %.2f s, %llu rays, %.3g Mrays/s%s -> %s\n",
                  scene.name.c_str(), scene.width, scene.height, result.spp, std::string(accel->name()).c_str(), threads,

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "accel/physical_memory.h"
+#include "renderer/io/exr_header.h"
 #include "renderer/util/error.h"
 
 namespace kappa {
@@ -32,6 +33,7 @@ std::string gib(std::uint64_t bytes) {
 ReferenceImage read_reference(const std::filesystem::path& path, std::optional<FilmSize> film) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, 0, "reference image not found");
+  check_exr_header(path);  // before OpenEXR allocates what a header declares
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) fail(path, 0, "cannot read the reference image: " + OIIO::geterror());
   const OIIO::ImageSpec spec = in->spec();

@@ -42,10 +42,11 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
   }
 
   nlohmann::ordered_json j;
-  j["calibration"] = calibration ? nlohmann::ordered_json{{"machine", calibration->machine},
-                                                          {"clock", calibration->clock},
-                                                          {"samples", calibration->samples}}
-                                 : nlohmann::ordered_json();
+  j["calibration"] = calibration ? nlohmann::ordered_json(calibration->source) : nlohmann::ordered_json();
+  j["calibration_fit"] = calibration ? nlohmann::ordered_json{{"machine", calibration->machine},
+                                                              {"clock", calibration->clock},
+                                                              {"samples", calibration->samples}}
+                                     : nlohmann::ordered_json();
   j["clock"] = clock.source();
   j["measured_s"] = measured;
   j["capped_queries"] = capped;

@@ -243,5 +243,39 @@ TEST(CellLayout, TheGridsCellsTileItsBoxAndHoldItsOccupancy) {
   EXPECT_EQ(cells.resolution_text(), "6x4x5");
 }
 
+TEST(Walk, CountingWalkWithAKnownHitReportsTheClosestWalksCellsAndTests) {
+  // What the resolution chooser counts on a candidate from a pilot's hits:
+  // the same cells, lists and mailboxed tests as the walk that tests
+  // triangles, at resolutions from coarse to fine.
+  const std::vector<Triangle> soup = test::random_soup(3000, 11, 0.08f);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.5f, 1.5f);
+  for (const GridResolution res : {GridResolution{4, 4, 4}, GridResolution{23, 17, 31}, GridResolution{96, 96, 96}}) {
+    GridOptions options;
+    options.resolution = res;
+    const UniformGrid grid(soup, options);
+    std::uint64_t hits = 0;
+    for (int i = 0; i < 2000; ++i) {
+      Ray ray{{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
+      if (i % 3 == 0) ray.tmax = 0.5f;  // some end before any hit
+      ListRecorder real, counted;
+      const std::optional<Hit> hit = grid.closest_hit(ray, real);
+      hits += hit.has_value();
+      grid.count_closest_walk(ray, hit ? std::optional<float>(hit->t) : std::nullopt, counted);
+      ASSERT_EQ(counted.finishes, real.finishes);
+      EXPECT_EQ(counted.counts.cells, real.counts.cells) << res.to_string() << " ray " << i;
+      EXPECT_EQ(counted.counts.occupied, real.counts.occupied) << res.to_string() << " ray " << i;
+      EXPECT_EQ(counted.counts.refs, real.counts.refs) << res.to_string() << " ray " << i;
+      EXPECT_EQ(counted.counts.tests, real.counts.tests) << res.to_string() << " ray " << i;
+      EXPECT_EQ(counted.counts.skips, real.counts.skips) << res.to_string() << " ray " << i;
+      EXPECT_EQ(counted.tests, real.tests);
+      EXPECT_EQ(counted.cells.size(), real.cells.size());
+      EXPECT_EQ(counted.segment.t_end, real.segment.t_end);
+      EXPECT_EQ(counted.hits, 0u);  // nothing is tested
+    }
+    EXPECT_GT(hits, 200u) << res.to_string();  // the rays hit often enough to test the stop
+  }
+}
+
 }  // namespace
 }  // namespace kappa

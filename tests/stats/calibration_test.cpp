@@ -106,6 +106,8 @@ TEST(Calibration, FileRoundTripAndErrors) {
   Calibration c;
   c.eq10.ns = {1.5, 2.5, 3.5};
   for (std::size_t k = 0; k < c.extended.ns.size(); ++k) c.extended.ns[k] = 0.5 + double(k);
+  c.build.ns = {14, 130, 1.5};
+  c.build.threads = 2;
   c.samples = 9;
   test::write_file(tmp / "c.json", to_json(c).dump());
   const auto back = load_calibration(tmp / "c.json");
@@ -113,7 +115,16 @@ TEST(Calibration, FileRoundTripAndErrors) {
   EXPECT_EQ(back->eq10.ns, c.eq10.ns);
   EXPECT_EQ(back->extended.ns, c.extended.ns);
   EXPECT_EQ(back->extended.cache_bytes, c.extended.cache_bytes);
-  test::write_file(tmp / "bad.json", "{\"format\": 3, \"eq10\": {\"constants\": {\"T0_ns\": \"fast\"}}}");
+  EXPECT_EQ(back->build.ns, c.build.ns);
+  EXPECT_EQ(back->build.threads, 2);
+  EXPECT_EQ(back->source, (tmp / "c.json").string());
+  // A file of this format without the build model's constants (format 3's content) is not a calibration.
+  nlohmann::json no_build = to_json(c);
+  no_build.erase("build");
+  test::write_file(tmp / "no_build.json", no_build.dump());
+  EXPECT_THROW(load_calibration(tmp / "no_build.json"), InputError);
+  test::write_file(tmp / "bad.json", "{\"format\": " + std::to_string(kCalibrationFormat) +
+                                          ", \"eq10\": {\"constants\": {\"T0_ns\": \"fast\"}}}");
   EXPECT_THROW(load_calibration(tmp / "bad.json"), InputError);
   // A file of the first format (eq 10 alone, Th per reference): refused with
   // a word to calibrate again, not read as something it is not.

@@ -103,10 +103,11 @@ TEST(ReportKeys, EveryDocumentedKeyIsInTheReports) {
   const nlohmann::json render = report_of({"render", scene, "--spp", "2", "--width", "32", "--height", "32", "--out",
                                            (tmp / "x.exr").string(), "--calibration", (tmp / "cal.json").string()});
   ASSERT_TRUE(render.at("cost").is_object());
-  // A budgeted render: the settings of its budgets.
+  // A budgeted render: the settings of its budgets; its grid chosen by the model: grid_choice.
   const nlohmann::json budgeted =
       report_of({"render", scene, "--spp", "16", "--width", "16", "--height", "16", "--time-budget", "1h",
-                 "--target-relmse", "0.5", "--adaptive", "--out", (tmp / "b.exr").string()});
+                 "--target-relmse", "0.5", "--adaptive", "--grid-res", "model", "--out", (tmp / "b.exr").string()});
+  ASSERT_TRUE(budgeted.at("grid_choice").is_object());
   const nlohmann::json lines = report_of({"cast", scene, "--rays", "lines", "--n", "2000"});
   const nlohmann::json segments = report_of({"cast", scene, "--rays", "segments", "--n", "2000"});
   // Per-thread counters of 2 threads over 64^3 cells do not fit: one shared sampled set.

@@ -1,0 +1,200 @@
+#include "resolution_choice.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include "accel/check.h"
+#include "accel/grid_traverse.h"
+#include "accel/input_error.h"
+#include "accel/parallel.h"
+#include "accel/triangle.h"
+
+namespace kappa {
+namespace {
+
+/// Sums what each walk reports (accel/recorder.h), nothing per cell.
+struct WalkSums {
+  std::uint64_t cells = 0, occupied = 0, tests = 0, skips = 0;
+  template <class BoxFn>
+  void cell(std::uint64_t, int, BoxFn&&) {}
+  void test() {}
+  void hit() {}
+  void finish(const WalkCounts& c, const WalkSegment&) {
+    cells += c.cells;
+    occupied += c.occupied;
+    tests += c.tests;
+    skips += c.skips;
+  }
+};
+
+struct ClassSums {
+  std::array<WalkSums, kRenderClasses> walks{};
+  std::array<std::uint64_t, kRenderClasses> rays{}, hits{};
+};
+
+}  // namespace
+
+std::size_t smallest_within(std::span<const Candidate> candidates, double tolerance) {
+  double least = std::numeric_limits<double>::infinity();
+  for (const Candidate& c : candidates) least = std::min(least, c.total_s());
+  std::size_t best = 0;
+  bool found = false;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (!(candidates[i].total_s() <= least * (1 + tolerance))) continue;
+    if (!found || candidates[i].res.cells() < candidates[best].res.cells()) best = i, found = true;
+  }
+  return best;
+}
+
+void search_unimodal(std::size_t count, std::size_t start, const std::function<double(std::size_t)>& cost,
+                     double tolerance) {
+  if (count == 0) return;
+  // Over the budget (an infinite cost) at the start: go down until one fits.
+  while (std::isinf(cost(start)) && start > 0) --start;
+  std::size_t at = start;
+  double least = cost(at);
+  const auto downhill = [&](int step) {
+    while (true) {
+      const std::ptrdiff_t next = std::ptrdiff_t(at) + step;
+      if (next < 0 || next >= std::ptrdiff_t(count)) return;
+      const double c = cost(std::size_t(next));
+      if (!(c < least)) return;
+      at = std::size_t(next);
+      least = c;
+    }
+  };
+  downhill(+1);
+  if (at == start) downhill(-1);
+  // The 2 % rule looks below the least: smaller grids whose cost is within
+  // the tolerance (costs rise monotonically below the minimum).
+  for (std::size_t i = at; i-- > 0;)
+    if (!(cost(i) <= least * (1 + tolerance))) break;
+}
+
+std::array<QueryLoad, kRenderClasses> count_segments(const UniformGrid& grid, std::span<const PilotSegment> segments) {
+  tbb::enumerable_thread_specific<ClassSums> per_thread;
+  kappa::parallel_for(tbb::blocked_range<std::size_t>(0, segments.size(), 1024), [&](const auto& range) {
+    ClassSums& sums = per_thread.local();
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      const PilotSegment& s = segments[i];
+      grid.count_closest_walk(s.ray, s.hit ? std::optional<float>(s.t_hit) : std::nullopt, sums.walks[s.ray_class]);
+      ++sums.rays[s.ray_class];
+      sums.hits[s.ray_class] += s.hit;
+    }
+  });
+  // Integer sums: the same totals whatever the thread count.
+  ClassSums all;
+  per_thread.combine_each([&](const ClassSums& t) {
+    for (std::size_t k = 0; k < kRenderClasses; ++k) {
+      all.walks[k].cells += t.walks[k].cells;
+      all.walks[k].occupied += t.walks[k].occupied;
+      all.walks[k].tests += t.walks[k].tests;
+      all.walks[k].skips += t.walks[k].skips;
+      all.rays[k] += t.rays[k];
+      all.hits[k] += t.hits[k];
+    }
+  });
+  const double working_set = double(grid.bytes()) + double(grid.info().N * sizeof(Triangle));
+  std::array<QueryLoad, kRenderClasses> loads{};
+  for (std::size_t k = 0; k < kRenderClasses; ++k)
+    loads[k] = QueryLoad{RenderClass(k),           double(all.rays[k]),        double(all.walks[k].cells),
+                         double(all.walks[k].occupied), double(all.walks[k].tests), double(all.walks[k].skips),
+                         double(all.hits[k]),      working_set};
+  return loads;
+}
+
+Candidate evaluate_candidate(const UniformGrid& grid, std::span<const PilotSegment> segments, const ChoiceSettings& settings) {
+  const GridInfo& info = grid.info();
+  Candidate c;
+  c.res = info.resolution;
+  c.lambda = info.N > 0 ? double(info.resolution.cells()) / double(info.N) : 0.0;
+  c.theta_tot = info.theta_tot;
+  c.bytes = grid.bytes() + std::uint64_t(settings.stats_bytes_per_cell * double(info.resolution.cells()));
+  const auto loads = count_segments(grid, segments);
+  for (std::size_t k = 0; k < kRenderClasses; ++k)
+    c.traversal_s += settings.traversal->seconds(loads[k]) * settings.rays_scale[k];
+  c.build_s = settings.build->seconds(double(info.N), double(info.theta_tot), double(info.resolution.cells()),
+                                      settings.threads);
+  return c;
+}
+
+std::vector<GridResolution> candidate_resolutions(std::span<const Triangle> triangles) {
+  const GridBox box = grid_box(triangles);
+  const OccupancyModel occupancy(triangles);
+  const double N = std::max(1.0, occupancy.N);
+  std::vector<GridResolution> out;
+  for (int k = kMinStep; k <= kMaxStep; ++k) {
+    const double cells = std::min(32.0 * std::pow(2.0, 0.5 * k) * N, double(std::numeric_limits<std::uint32_t>::max() - 2));
+    const GridResolution r = bounded_resolution(occupancy, box.extent(), choose_resolution(box.extent(), cells));
+    if (std::find(out.begin(), out.end(), r) == out.end()) out.push_back(r);
+  }
+  std::sort(out.begin(), out.end(), [](const GridResolution& a, const GridResolution& b) { return a.cells() < b.cells(); });
+  return out;
+}
+
+ResolutionChoice choose_resolution_by_model(std::span<const Triangle> triangles, std::span<const PilotSegment> segments,
+                                            const ChoiceSettings& settings, bool exhaustive) {
+  const std::vector<GridResolution> resolutions = candidate_resolutions(triangles);
+  const double N = std::max(1.0, OccupancyModel(triangles).N);
+  ResolutionChoice choice;
+  constexpr double kNotFit = std::numeric_limits<double>::infinity();
+  std::vector<double> total(resolutions.size(), -1.0);  // -1: not evaluated yet
+  std::vector<std::unique_ptr<UniformGrid>> grids(resolutions.size());
+  std::vector<std::size_t> evaluated_index(resolutions.size(), 0);
+  double least = kNotFit;
+  const auto evaluate = [&](std::size_t i) {
+    if (total[i] >= 0) return total[i];
+    GridOptions options;
+    options.resolution = resolutions[i];
+    options.max_bytes = settings.max_bytes;
+    std::unique_ptr<UniformGrid> grid;
+    try {
+      grid = std::make_unique<UniformGrid>(triangles, options);
+    } catch (const InputError& e) {
+      choice.skipped.push_back(resolutions[i].to_string() + ": " + e.what());
+      return total[i] = kNotFit;
+    }
+    const Candidate c = evaluate_candidate(*grid, segments, settings);
+    if (c.bytes > settings.max_bytes) {
+      choice.skipped.push_back(resolutions[i].to_string() + ": the grid and its per-cell statistics need " +
+                               std::to_string(c.bytes) + " bytes, over --grid-max-bytes");
+      return total[i] = kNotFit;
+    }
+    evaluated_index[i] = choice.evaluated.size();
+    choice.evaluated.push_back(c);
+    total[i] = c.total_s();
+    least = std::min(least, total[i]);
+    grids[i] = std::move(grid);
+    // Only grids that may still be chosen are kept: within the tolerance of the least so far.
+    for (std::size_t j = 0; j < grids.size(); ++j)
+      if (grids[j] && total[j] > least * (1 + settings.tolerance)) grids[j].reset();
+    return total[i];
+  };
+
+  if (exhaustive) {
+    for (std::size_t i = 0; i < resolutions.size(); ++i) evaluate(i);
+  } else {
+    // Start nearest lambda = 32 (the default's density), walk downhill.
+    std::size_t start = 0;
+    for (std::size_t i = 0; i < resolutions.size(); ++i)
+      if (std::abs(std::log(double(resolutions[i].cells()) / (32 * N))) <
+          std::abs(std::log(double(resolutions[start].cells()) / (32 * N))))
+        start = i;
+    search_unimodal(resolutions.size(), start, evaluate, settings.tolerance);
+  }
+  if (choice.evaluated.empty())
+    throw InputError("--grid-res model: no candidate resolution fits --grid-max-bytes (" +
+                     std::to_string(settings.max_bytes) + " bytes)");
+  choice.chosen = smallest_within(choice.evaluated, settings.tolerance);
+  for (std::size_t i = 0; i < resolutions.size(); ++i)
+    if (total[i] >= 0 && total[i] != kNotFit && evaluated_index[i] == choice.chosen) choice.grid = std::move(grids[i]);
+  KAPPA_CHECK(choice.grid != nullptr);
+  return choice;
+}
+
+}  // namespace kappa
