@@ -70,6 +70,39 @@ TEST(Reference, SizeOtherThanTheFilmIsRefusedFromTheHeader) {
   }
 }
 
+TEST(Reference, AnAttributeLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
+  // OpenEXR 3.1 resizes a string attribute to its declared size before it
+  // reads: this 1 kB file would take 2 GB (the exr_reference fuzzer's timeout).
+  test::TempDir dir;
+  std::string bytes = exr_declaring(4);
+  const std::string key = std::string("channels") + '\0' + "chlist" + '\0';
+  const std::size_t at = bytes.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const std::int32_t huge = 0x7fffffff;
+  std::memcpy(&bytes[at + key.size()], &huge, 4);
+  test::write_file(dir / "huge_attribute.exr", bytes);
+  try {
+    read_reference(dir / "huge_attribute.exr");
+    FAIL() << "read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("huge_attribute.exr: not a valid OpenEXR header: attribute 'channels' (chlist) "
+                                         "declares 2147483647 bytes"),
+              std::string::npos)
+        << e.what();
+  }
+  // A name longer than OpenEXR allows without the long-names flag.
+  bytes = exr_declaring(4);
+  const std::size_t name_at = bytes.find("channels");
+  bytes.replace(name_at, 8, std::string(40, 'c'));
+  test::write_file(dir / "long_name.exr", bytes);
+  try {
+    read_reference(dir / "long_name.exr");
+    FAIL() << "read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("an attribute name is longer than 31 bytes"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Reference, TheUnpatchedImageIsRead) {
   test::TempDir dir;
   const auto path = dir / "small.exr";
