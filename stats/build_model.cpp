@@ -27,19 +27,13 @@ void fit(BuildModel& model, std::span<const TimedBuild> builds, int threads) {
 }
 
 nlohmann::ordered_json to_json(const BuildModel& model) {
-  nlohmann::ordered_json constants;
-  for (std::size_t i = 0; i < model.terms.size(); ++i) constants[model.terms[i] + "_ns"] = model.ns[i];
-  return {{"constants", constants}, {"threads", model.threads}, {"rms_relative_error", model.rms_relative_error}};
+  return {{"constants", constants_json(model.terms, model.ns)},
+          {"threads", model.threads},
+          {"rms_relative_error", model.rms_relative_error}};
 }
 
 bool from_json(const nlohmann::json& j, BuildModel& model) {
-  if (!j.is_object() || !j.contains("constants") || !j["constants"].is_object()) return false;
-  for (std::size_t i = 0; i < model.terms.size(); ++i) {
-    const auto it = j["constants"].find(model.terms[i] + "_ns");
-    if (it == j["constants"].end() || !it->is_number()) return false;
-    model.ns[i] = it->get<double>();
-    if (!std::isfinite(model.ns[i]) || model.ns[i] < 0) return false;
-  }
+  if (!constants_from_json(j, model.terms, model.ns)) return false;
   const auto threads = j.find("threads");
   if (threads == j.end() || !threads->is_number_integer() || threads->get<int>() < 1) return false;
   model.threads = threads->get<int>();

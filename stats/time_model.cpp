@@ -211,22 +211,32 @@ void fit(TimeModel& model, std::span<const TimedLoad> measurements) {
   model.ns = fit_relative(features, ns_per_ray, labels, model.name + " model's", model.rms_relative_error);
 }
 
-nlohmann::ordered_json to_json(const TimeModel& model) {
+nlohmann::ordered_json constants_json(const std::vector<std::string>& terms, const std::vector<double>& ns) {
   nlohmann::ordered_json constants;
-  for (std::size_t i = 0; i < model.terms.size(); ++i) constants[model.terms[i] + "_ns"] = model.ns[i];
-  nlohmann::ordered_json j = {{"constants", constants}, {"rms_relative_error", model.rms_relative_error}};
+  for (std::size_t i = 0; i < terms.size(); ++i) constants[terms[i] + "_ns"] = ns[i];
+  return constants;
+}
+
+bool constants_from_json(const nlohmann::json& j, const std::vector<std::string>& terms, std::vector<double>& ns) {
+  if (!j.is_object() || !j.contains("constants") || !j["constants"].is_object()) return false;
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    const auto it = j["constants"].find(terms[i] + "_ns");
+    if (it == j["constants"].end() || !it->is_number()) return false;
+    ns[i] = it->get<double>();
+    if (!std::isfinite(ns[i]) || ns[i] < 0) return false;
+  }
+  return true;
+}
+
+nlohmann::ordered_json to_json(const TimeModel& model) {
+  nlohmann::ordered_json j = {{"constants", constants_json(model.terms, model.ns)},
+                              {"rms_relative_error", model.rms_relative_error}};
   if (model.form == ModelForm::extended) j["cache_bytes"] = model.cache_bytes;
   return j;
 }
 
 bool from_json(const nlohmann::json& j, TimeModel& model) {
-  if (!j.is_object() || !j.contains("constants") || !j["constants"].is_object()) return false;
-  for (std::size_t i = 0; i < model.terms.size(); ++i) {
-    const auto it = j["constants"].find(model.terms[i] + "_ns");
-    if (it == j["constants"].end() || !it->is_number()) return false;
-    model.ns[i] = it->get<double>();
-    if (!std::isfinite(model.ns[i]) || model.ns[i] < 0) return false;
-  }
+  if (!constants_from_json(j, model.terms, model.ns)) return false;
   model.rms_relative_error = j.value("rms_relative_error", 0.0);
   if (model.form == ModelForm::extended) {
     if (!j.contains("cache_bytes") || !j["cache_bytes"].is_number()) return false;

@@ -102,6 +102,11 @@ void fit(TimeModel& model, std::span<const TimedLoad> measurements);
 std::vector<double> fit_relative(const std::vector<std::vector<double>>& features, const std::vector<double>& values,
                                  const std::vector<std::string>& labels, const std::string& what, double& rms);
 
+/// {TERM_ns: ns, ...} of a model's constants, and back: false unless `j`'s
+/// "constants" holds every term as a finite number >= 0.
+nlohmann::ordered_json constants_json(const std::vector<std::string>& terms, const std::vector<double>& ns);
+bool constants_from_json(const nlohmann::json& j, const std::vector<std::string>& terms, std::vector<double>& ns);
+
 nlohmann::ordered_json to_json(const TimeModel& model);
 /// Reads what to_json wrote; false if `j` is not such a model.
 bool from_json(const nlohmann::json& j, TimeModel& model);

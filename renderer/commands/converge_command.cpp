@@ -300,14 +300,7 @@ int run_converge(const ConvergeOptions& options) {
   std::vector<std::filesystem::path> inputs = scene.inputs;
   if (!options.reference.empty()) inputs.push_back(options.reference);
   refuse_outputs_over_inputs({options.json, options.plot}, inputs);
-  const auto json_out = optional_output(options.json);
-  const auto plot_out = optional_output(options.plot, OutputKind::image);
-  // The plot script reads the JSON: from --json's temporary, or its own
-  // (also when --json is a device or FIFO, which it could not read back).
-  std::unique_ptr<AtomicOutput> plot_json;
-  if (plot_out && (!json_out || json_out->direct()))
-    plot_json = std::make_unique<AtomicOutput>(plot_out->temp_path().string() + ".json");
-  if (plot_out) run_plot_script("converge_plot.py", {"--check"});  // a missing matplotlib fails now, not after the renders
+  JsonAndPlot outputs(options.json, options.plot, "converge_plot.py");  // claimed, and matplotlib checked, now
 
   const Reference ref = reference_for(options, settings, scene, show_progress);
   std::vector<ConvergeCurve> curves;
@@ -343,17 +336,7 @@ int run_converge(const ConvergeOptions& options) {
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const ConvergeCurve& c : curves) list.push_back(to_json(c, t));
   j["settings"] = list;
-  const std::string text = j.dump(2) + "\n";
-
-  if (json_out) write_temporary(*json_out, text);
-  if (plot_json) write_temporary(*plot_json, text);
-  if (plot_out)
-    run_plot_script("converge_plot.py", {(plot_json ? plot_json->temp_path() : json_out->temp_path()).string(), plot_out->temp_path().string()});
-  {
-    const SignalsHeld held;
-    if (json_out) json_out->commit();
-    if (plot_out) plot_out->commit();
-  }
+  outputs.finish(j.dump(2) + "\n");
 
   std::printf("converge: %s %dx%d, %d thread(s); reference %s%s\n", scene.name.c_str(), scene.width, scene.height,
               j["threads"].get<int>(), ref.path.c_str(), ref.self_made ? " (self-made)" : "");

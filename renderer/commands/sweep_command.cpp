@@ -81,13 +81,7 @@ int run_sweep(const SweepOptions& options) {
   std::vector<std::filesystem::path> inputs = scene.inputs;
   inputs.push_back(calibration_path);
   refuse_outputs_over_inputs({options.json, options.plot}, inputs);
-  const auto json_out = optional_output(options.json);
-  const auto plot_out = optional_output(options.plot, OutputKind::image);
-  // The plot script reads the JSON: --json's temporary, or its own beside the PNG's.
-  std::unique_ptr<AtomicOutput> plot_json;
-  if (plot_out && (!json_out || json_out->direct()))
-    plot_json = std::make_unique<AtomicOutput>(plot_out->temp_path().string() + ".json");
-  if (plot_out) run_plot_script("sweep_plot.py", {"--check"});  // a missing matplotlib fails now, not after the sweep
+  JsonAndPlot outputs(options.json, options.plot, "sweep_plot.py");  // claimed, and matplotlib checked, now
   std::optional<Calibration> calibration = load_calibration(calibration_path);
   if (!calibration && !options.calibration.empty())
     throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
@@ -218,14 +212,7 @@ int run_sweep(const SweepOptions& options) {
   }
   if (!options.quiet) std::printf("(* the fastest resolution for that class)\n");
 
-  const std::string text = j.dump(2) + "\n";
-  if (json_out) write_temporary(*json_out, text);
-  if (plot_json) write_temporary(*plot_json, text);
-  if (plot_out)
-    run_plot_script("sweep_plot.py",
-                    {(plot_json ? plot_json->temp_path() : json_out->temp_path()).string(), plot_out->temp_path().string()});
-  if (json_out) json_out->commit();
-  if (plot_out) plot_out->commit();
+  outputs.finish(j.dump(2) + "\n");
   return 0;
 }
 

@@ -3,8 +3,12 @@
 // (not the python3 first on PATH).
 #pragma once
 
+#include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "renderer/io/atomic_file.h"
 
 namespace kappa {
 
@@ -14,5 +18,22 @@ namespace kappa {
 /// Throws InputError naming what is missing (python3, python3-matplotlib,
 /// the script) and std::runtime_error when the script fails otherwise.
 void run_plot_script(const std::string& script, const std::vector<std::string>& args);
+
+/// The outputs of a command that writes JSON (--json) and may plot it
+/// (--plot, a PNG drawn from that JSON by a script of tools/). Claimed when
+/// made, before the work: an unwritable path or a missing matplotlib fails
+/// at once. finish() writes the JSON, draws the plot from it (from the JSON's
+/// temporary, or from one of its own when there is no --json or it names a
+/// device or FIFO, which the script could not read back) and commits both
+/// together. Empty paths: that output is not wanted.
+class JsonAndPlot {
+ public:
+  JsonAndPlot(const std::filesystem::path& json, const std::filesystem::path& plot, std::string script);
+  void finish(const std::string& text);
+
+ private:
+  std::string m_script;
+  std::unique_ptr<AtomicOutput> m_json, m_plot, m_plot_json;
+};
 
 }  // namespace kappa
