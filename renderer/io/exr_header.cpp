@@ -17,6 +17,24 @@ std::uint32_t little_endian(const unsigned char* b) {
   return std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
 }
 
+/// Bytes OpenEXR 3.1 reads for a value of a type whose reader takes a fixed
+/// size whatever the attribute declares (Header::readFrom then goes on from
+/// where that reader stopped, not from the declared end); 0 for the others.
+std::uint64_t fixed_value_bytes(const std::string& type) {
+  struct Fixed {
+    const char* type;
+    std::uint64_t bytes;
+  };
+  static constexpr Fixed kFixed[] = {
+      {"box2i", 16},  {"box2f", 16},  {"chromaticities", 32}, {"compression", 1}, {"double", 8}, {"envmap", 1},
+      {"float", 4},   {"int", 4},     {"keycode", 28},        {"lineOrder", 1},   {"m33f", 36},  {"m33d", 72},
+      {"m44f", 64},   {"m44d", 128},  {"rational", 8},        {"tiledesc", 9},    {"timecode", 8}, {"v2i", 8},
+      {"v2f", 8},     {"v2d", 16},    {"v3i", 12},            {"v3f", 12},        {"v3d", 24},   {"deepImageState", 1}};
+  for (const Fixed& f : kFixed)
+    if (type == f.type) return f.bytes;
+  return 0;
+}
+
 }  // namespace
 
 void check_exr_header(const std::filesystem::path& path) {
@@ -30,33 +48,62 @@ void check_exr_header(const std::filesystem::path& path) {
   const std::uint32_t flags = little_endian(start + 4) & ~0xffu;
   const std::size_t longest = (flags & kLongNames) ? 255 : 31;
   const auto refuse = [&](const std::string& why) { fail(path, 0, "not a valid OpenEXR header: " + why); };
-  // A null-terminated string of at most `longest` bytes; empty at a header's end.
-  const auto read_name = [&](const char* what) {
+  const auto left = [&] { return size - std::uint64_t(in.tellg()); };
+  // A null-terminated string of at most `most` bytes; empty at a header's end.
+  const auto read_name = [&](const char* what, std::size_t most) {
     std::string s;
     for (char c; in.get(c);) {
       if (c == '\0') return s;
-      if (s.size() == longest) refuse(std::string("an attribute ") + what + " is longer than " + std::to_string(longest) + " bytes");
+      if (s.size() == most) refuse(std::string("an attribute ") + what + " is longer than " + std::to_string(most) + " bytes");
       s += c;
     }
     refuse(std::string("the file ends inside an attribute ") + what);
     return s;
   };
+  const auto read_int = [&](const std::string& what) {
+    unsigned char b[4];
+    if (!in.read(reinterpret_cast<char*>(b), 4)) refuse("the file ends in " + what);
+    return std::int32_t(little_endian(b));
+  };
+  const auto skip = [&](std::uint64_t bytes, const std::string& what) {
+    if (bytes > left()) refuse(what + " needs " + std::to_string(bytes) + " bytes, but " + std::to_string(left()) +
+                               " are left in the file");
+    in.seekg(std::streamoff(std::uint64_t(in.tellg()) + bytes));
+  };
+  // One attribute's value, consumed as OpenEXR 3.1's reader of its type does.
+  const auto read_value = [&](const std::string& name, const std::string& type, std::int32_t declared) {
+    const std::string what = "attribute '" + name + "' (" + type + ")";
+    if (declared < 0) refuse(what + " declares " + std::to_string(declared) + " bytes");
+    if (const std::uint64_t fixed = fixed_value_bytes(type)) return skip(fixed, what);
+    if (type == "chlist") {  // channels until an empty name, each a name and 16 bytes
+      while (!read_name("channel name", 255).empty()) skip(16, what);
+      return;
+    }
+    if (type == "preview") {  // width and height, then 4 bytes a pixel
+      const std::uint64_t w = std::uint32_t(read_int(what)), h = std::uint32_t(read_int(what));
+      return skip(w * h * 4, what);
+    }
+    if (type == "stringvector") {  // strings, each its length first, within the declared size
+      std::uint64_t read = 0;
+      while (read < std::uint64_t(declared)) {
+        const std::int32_t length = read_int(what);
+        if (length < 0) refuse(what + " holds a string of " + std::to_string(length) + " bytes");
+        skip(std::uint64_t(length), what);
+        read += 4 + std::uint64_t(length);
+      }
+      return;
+    }
+    skip(std::uint64_t(declared), what);  // string, floatvector, idmanifest, unknown (opaque): the declared size
+  };
   for (;;) {
     // A header: attributes up to an empty name. A multi-part file lists
     // headers until an empty one; a single-part file has one.
-    std::string name = read_name("name");
+    std::string name = read_name("name", longest);
     if (name.empty()) return;
     do {
-      const std::string type = read_name("type");
-      unsigned char b[4];
-      if (!in.read(reinterpret_cast<char*>(b), 4)) refuse("the file ends in the size of attribute '" + name + "'");
-      const std::int32_t declared = std::int32_t(little_endian(b));
-      const std::uint64_t at = std::uint64_t(in.tellg());
-      if (declared < 0 || std::uint64_t(declared) > size - at)
-        refuse("attribute '" + name + "' (" + type + ") declares " + std::to_string(declared) + " bytes, but " +
-               std::to_string(size - at) + " are left in the file");
-      in.seekg(std::streamoff(at + std::uint64_t(declared)));
-      name = read_name("name");
+      const std::string type = read_name("type", longest);
+      read_value(name, type, read_int("the size of attribute '" + name + "'"));
+      name = read_name("name", longest);
     } while (!name.empty());
     if (!(flags & kMultiPart)) return;
   }

@@ -8,11 +8,14 @@
 
 namespace kappa {
 
-/// Walks the header(s) of the OpenEXR file at `path` -- attribute name,
-/// type, size, value, up to the null byte that ends a header (every header
-/// of a multi-part file) -- and throws InputError naming the file when an
-/// attribute's size is negative or beyond the file's end, or a name or type
-/// runs past the longest OpenEXR allows. A file without OpenEXR's magic
+/// Walks the header(s) of the OpenEXR file at `path` as OpenEXR 3.1 reads
+/// them -- attribute name, type, size, then the value as that type's reader
+/// consumes it (a fixed size for most types, whatever the declared one; a
+/// channel list up to its empty name; a preview's width x height pixels; a
+/// string vector's strings; the declared size for the rest), up to the null
+/// byte that ends a header (every header of a multi-part file) -- and throws
+/// InputError naming the file when any of it would read past the file's end
+/// or a name or type runs past the longest OpenEXR allows. A file without OpenEXR's magic
 /// number is left to OpenImageIO, which says what it is.
 void check_exr_header(const std::filesystem::path& path);
 
