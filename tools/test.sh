@@ -6,7 +6,7 @@
 #                                          the tests read KAPPA_TEST_SCALE and cast fewer rays;
 #                                          glibc's own leaks are suppressed (tools/lsan.supp)
 #   tools/test.sh --tsan [CTEST ARGS]      TSan build in build-tsan/: the multi-threaded tests
-#                                          (not in CI; libtbb's reports are suppressed, tools/tsan.supp)
+#                                          (not in CI; tools/tsan.supp holds no entry)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=normal
@@ -48,9 +48,10 @@ case "$mode" in
     export TSAN_OPTIONS="suppressions=$PWD/tools/tsan.supp:halt_on_error=1:second_deadlock_stack=1"
     # The tests whose threads share state: the tile loop and its passes, the
     # per-cell counters (render and cast), the parallel grid build on soups and
-    # meshes, the progress display and Ctrl-C. Not every Grid test: TSan makes
+    # meshes, the resolution chooser (its candidates counted in parallel), the
+    # progress display and Ctrl-C. Not every Grid test: TSan makes
     # a 512^3 build take over 9 minutes (1.8 s without it).
     (cd build-tsan && ctest --output-on-failure -j 1 \
-      -R "${KAPPA_TSAN_TESTS:-^(Determinism|Passes|Budget|RenderStats|Cast|CastIdentities|Bench|Progress|Interrupt)\.|^Grid\.(RandomSoups|LowResolutionBunny|CellLists|Occupancy)}" "$@")
+      -R "${KAPPA_TSAN_TESTS:-^(Determinism|Passes|Budget|RenderStats|Cast|CastIdentities|Bench|Progress|Interrupt|GridChoice|ResolutionChoice)\.|^Grid\.(RandomSoups|LowResolutionBunny|CellLists|Occupancy)}" "$@")
     ;;
 esac
