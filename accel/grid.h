@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <utility>
@@ -19,6 +20,7 @@
 #include "accel.h"
 #include "cell_layout.h"
 #include "grid_resolution.h"
+#include "huge_pages.h"
 #include "task_progress.h"
 
 namespace kappa {
@@ -73,6 +75,8 @@ inline constexpr double kThetaBoundPerTriangle = 16.0;
 /// bound; `resolution` itself when it does.
 GridResolution bounded_resolution(const OccupancyModel& occupancy, const Vec3d& extent, GridResolution resolution);
 
+class UniformGrid;
+
 struct GridOptions {
   std::optional<GridResolution> resolution;  ///< nullopt = auto from density
   double density = kDefaultGridDensity;
@@ -81,6 +85,13 @@ struct GridOptions {
   /// by a random offset, to average occupancy over placements); it must hold
   /// the triangles that should be in the grid.
   std::optional<std::pair<Vec3d, Vec3d>> box;
+  /// Lists for some cells only, the rest left empty: called with the grid
+  /// before any triangle is in it (every cell empty, the walk already the
+  /// whole grid's), it returns the cells to fill as a bitset of N_c bits.
+  /// A resolution chooser's candidate fills the cells its pilot's walks
+  /// visit, so that it counts them as the whole grid would at a fraction of
+  /// the build (GridInfo::partial; its theta_tot and bytes are its own).
+  std::function<std::vector<std::uint64_t>(const UniformGrid&)> cells_to_fill;
 };
 
 /// What the grid measured about itself while building (for reports).
@@ -97,6 +108,7 @@ struct GridInfo {
   std::uint64_t empty_cells = 0;
   std::uint64_t bytes = 0;  ///< cell offsets + triangle index array + occupancy bits
   double build_s = 0;
+  bool partial = false;     ///< built with GridOptions::cells_to_fill: only some cells' lists
 };
 
 class UniformGrid final : public Accelerator, public CellLayout {
@@ -161,11 +173,11 @@ class UniformGrid final : public Accelerator, public CellLayout {
   std::span<const Triangle> m_triangles;
   GridInfo m_info;
   Vec3d m_inv_cell;                 ///< 1 / cell size per axis
-  std::vector<std::uint32_t> m_offsets;  ///< N_c + 1 entries into m_refs
-  std::vector<TriangleId> m_refs;       ///< triangle ids, cell by cell
+  HugePageVector<std::uint32_t> m_offsets;  ///< N_c + 1 entries into m_refs
+  HugePageVector<TriangleId> m_refs;       ///< triangle ids, cell by cell
   /// One bit per cell, set if it holds any triangle: 1/32 of the offsets'
   /// size, so it stays in cache and empty cells cost no offset loads.
-  std::vector<std::uint64_t> m_occupied;
+  HugePageVector<std::uint64_t> m_occupied;
 };
 
 }  // namespace kappa

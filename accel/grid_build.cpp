@@ -115,21 +115,21 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
     m_info.resolution = *options.resolution;
   } else {
     // lambda * N, but never more cells than 32-bit offsets or the memory
-    // budget allow (offsets and the fill pass's cursors: 8 bytes a cell).
+    // budget allow (offsets, 4 bytes a cell, and room for as many bytes again of references).
     const double cap = std::min(double(std::numeric_limits<std::uint32_t>::max() - 2), double(options.max_bytes) / 16.0);
     m_info.resolution = choose_resolution(extent, std::clamp(options.density * double(m_info.N), 1.0, std::max(1.0, cap)));
     m_info.resolution = bounded_resolution(OccupancyModel(triangles), extent, m_info.resolution);
   }
   const std::uint64_t cells = m_info.resolution.cells();
-  // Offsets (with the occupancy bits) plus the fill pass's per-cell cursors.
+  // Offsets, with the occupancy bits.
   const std::uint64_t offset_bytes = (cells + 1) * sizeof(std::uint32_t) + (cells + 63) / 64 * sizeof(std::uint64_t);
   if (cells >= std::numeric_limits<std::uint32_t>::max())
     throw InputError("grid: " + m_info.resolution.to_string() + " = " + std::to_string(cells) +
                                 " cells, over the 2^32 - 1 a grid can index");
-  if (2 * offset_bytes > options.max_bytes)
+  if (offset_bytes > options.max_bytes)
     throw InputError("grid: " + m_info.resolution.to_string() + " = " + std::to_string(cells) +
-                                " cells need " + byte_size(2 * offset_bytes) +
-                                " for cell offsets and build cursors alone, over --grid-max-bytes (" +
+                                " cells need " + byte_size(offset_bytes) +
+                                " for cell offsets alone, over --grid-max-bytes (" +
                                 byte_size(options.max_bytes) + ")");
   for (int a = 0; a < 3; ++a) {
     const double l = extent[a] / m_info.resolution[a];
@@ -137,30 +137,49 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
     (a == 0 ? m_inv_cell.x : a == 1 ? m_inv_cell.y : m_inv_cell.z) = 1.0 / l;
   }
 
+  // The cells to fill, asked of the grid while it is empty (a walk of it
+  // visits what the filled grid's walk visits: the cells follow the box, not
+  // the lists).
+  std::vector<std::uint64_t> fill;
+  if (options.cells_to_fill) {
+    m_offsets.assign(cells + 1, 0);  // pass 1 starts from these zeros
+    m_occupied.assign((cells + 63) / 64, 0);
+    fill = options.cells_to_fill(*this);
+    KAPPA_CHECK_EQ(fill.size(), (cells + 63) / 64);
+    m_info.partial = true;
+  }
+  const auto filled = [&fill](std::uint64_t c) { return fill.empty() || ((fill[c >> 6] >> (c & 63)) & 1); };
+
   // Pass 1: count the triangles of each cell.
-  m_offsets.assign(cells + 1, 0);
+  if (!m_info.partial) m_offsets.assign(cells + 1, 0);
   begin_phase(progress, "grid " + m_info.resolution.to_string() + ": counting cells", usable_ids.size());
   std::atomic<std::uint64_t> max_multiplicity{0};
   for_each_chunk(usable_ids.size(), progress, [&](std::size_t k) {
     std::uint64_t cells_of_triangle = 0;
-    for_each_overlapped_cell(m_info, m_inv_cell, triangles[usable_ids[k]], [&](std::uint64_t c) {
+    const auto count = [&](std::uint64_t c) {
       std::atomic_ref<std::uint32_t>(m_offsets[c]).fetch_add(1, std::memory_order_relaxed);
       ++cells_of_triangle;
-    });
+    };
+    if (m_info.partial) for_each_overlapped_cell(m_info, m_inv_cell, triangles[usable_ids[k]], count, filled);
+    else for_each_overlapped_cell(m_info, m_inv_cell, triangles[usable_ids[k]], count);
     // The paper's multiplicity M_j of this triangle; the largest is kept.
     std::uint64_t seen = max_multiplicity.load(std::memory_order_relaxed);
     while (cells_of_triangle > seen && !max_multiplicity.compare_exchange_weak(seen, cells_of_triangle)) {
     }
   });
   m_info.max_multiplicity = max_multiplicity.load();
-  // Exclusive prefix sum into offsets; 64-bit total to detect overflow.
+  // Inclusive prefix sum into offsets (each cell's end; pass 2 counts them
+  // down to each cell's start), the occupancy bits from the counts; 64-bit
+  // total to detect overflow.
+  m_occupied.assign((cells + 63) / 64, 0);
   std::uint64_t total = 0;
   for (std::uint64_t c = 0; c < cells; ++c) {
     const std::uint32_t n = m_offsets[c];
     m_info.max_occupancy = std::max(m_info.max_occupancy, n);
     m_info.empty_cells += n == 0;
-    m_offsets[c] = std::uint32_t(std::min<std::uint64_t>(total, std::numeric_limits<std::uint32_t>::max()));
+    if (n != 0) m_occupied[c >> 6] |= std::uint64_t(1) << (c & 63);
     total += n;
+    m_offsets[c] = std::uint32_t(std::min<std::uint64_t>(total, std::numeric_limits<std::uint32_t>::max()));
   }
   const std::uint64_t bytes = offset_bytes + total * sizeof(TriangleId);
   if (total >= std::numeric_limits<std::uint32_t>::max() || bytes > options.max_bytes)
@@ -169,27 +188,29 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
                                 byte_size(options.max_bytes) + ") or 2^32 - 1 references");
   m_offsets[cells] = std::uint32_t(total);
   m_info.theta_tot = total;
-  m_occupied.assign((cells + 63) / 64, 0);
-  for (std::uint64_t c = 0; c < cells; ++c)
-    if (m_offsets[c] != m_offsets[c + 1]) m_occupied[c >> 6] |= std::uint64_t(1) << (c & 63);
   m_info.bytes = bytes;  // offset_bytes already counts the occupancy bits
 
-  // Pass 2: fill. Threads race for slots within a cell, so each cell is
-  // sorted afterwards: the layout (and anything counted over it) does not
-  // depend on scheduling.
+  // Pass 2: fill, each cell from its end down, so that its offset ends at its
+  // start without a second array of cursors (which cost a copy of the
+  // offsets, and on these VMs as much again in page faults). Threads race
+  // for slots within a cell, so each cell is sorted afterwards: the layout
+  // (and anything counted over it) does not depend on scheduling.
   m_refs.resize(total);
-  std::vector<std::uint32_t> cursor(m_offsets.begin(), m_offsets.end() - 1);
   begin_phase(progress, "grid " + m_info.resolution.to_string() + ": filling cells", usable_ids.size());
   for_each_chunk(usable_ids.size(), progress, [&](std::size_t k) {
     const TriangleId id = usable_ids[k];
-    for_each_overlapped_cell(m_info, m_inv_cell, triangles[id], [&](std::uint64_t c) {
-      const std::uint32_t slot = std::atomic_ref<std::uint32_t>(cursor[c]).fetch_add(1, std::memory_order_relaxed);
-      // Pass 1 counted exactly the cells pass 2 visits: a slot past the row's
-      // end would write into the next cell's references, or past the array.
-      KAPPA_CHECK_LT(slot, m_offsets[c + 1]);
-      m_refs[slot] = id;
-    });
+    const auto place = [&](std::uint64_t c) {
+      const std::uint32_t end = std::atomic_ref<std::uint32_t>(m_offsets[c]).fetch_sub(1, std::memory_order_relaxed);
+      // Pass 1 counted exactly the cells pass 2 visits: a cell counted down
+      // past its start would write into the previous cell's references, and
+      // past 0 before the array.
+      KAPPA_CHECK_GT(end, 0u);
+      m_refs[end - 1] = id;
+    };
+    if (m_info.partial) for_each_overlapped_cell(m_info, m_inv_cell, triangles[id], place, filled);
+    else for_each_overlapped_cell(m_info, m_inv_cell, triangles[id], place);
   });
+  KAPPA_CHECK_EQ(m_offsets[0], 0u);
   kappa::parallel_for(std::uint64_t(0), cells, [&](std::uint64_t c) {
     std::sort(m_refs.begin() + m_offsets[c], m_refs.begin() + m_offsets[c + 1]);
   });

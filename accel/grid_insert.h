@@ -94,11 +94,18 @@ inline double cell_hi(const GridInfo& grid, int axis, int k) {
 
 }  // namespace detail
 
-/// Calls f(cell index) for every cell of `grid` whose closed box, inflated by
-/// the margin, triangle t overlaps, in increasing x within y within z.
+/// Every cell: the filter of a whole grid's build.
+struct EveryCell {
+  constexpr bool operator()(std::uint64_t) const { return true; }
+};
+
+/// Calls f(cell index) for every cell of `grid` that `keep` accepts and whose
+/// closed box, inflated by the margin, triangle t overlaps, in increasing x
+/// within y within z; a cell `keep` refuses costs no separating-axis test.
 /// Returns the number of separating-axis tests made.
-template <typename F>
-std::uint64_t for_each_overlapped_cell(const GridInfo& grid, const Vec3d& inv_cell, const Triangle& t, F&& f) {
+template <typename F, typename Keep = EveryCell>
+std::uint64_t for_each_overlapped_cell(const GridInfo& grid, const Vec3d& inv_cell, const Triangle& t, F&& f,
+                                       Keep&& keep = {}) {
   using detail::cell_hi;
   using detail::cell_lo;
   const Vec3d v0(t.v0), v1(t.v1), v2(t.v2);
@@ -117,12 +124,15 @@ std::uint64_t for_each_overlapped_cell(const GridInfo& grid, const Vec3d& inv_ce
       const detail::ClipPolygon row = detail::clip_to_slab(slab, 1, cell_lo(grid, 1, y) - 2 * m, cell_hi(grid, 1, y) + 2 * m);
       int x0, x1;
       detail::candidate_range(grid, inv_cell, row, 0, x0, x1);
+      const std::uint64_t row_index =
+          std::uint64_t(grid.resolution.nx) * (std::uint64_t(y) + std::uint64_t(grid.resolution.ny) * std::uint64_t(z));
       for (int x = x0; x <= x1; ++x) {
+        const std::uint64_t index = std::uint64_t(x) + row_index;
+        if (!keep(index)) continue;
         ++tests;
         const Vec3d lo{cell_lo(grid, 0, x), cell_lo(grid, 1, y), cell_lo(grid, 2, z)};
         const Vec3d hi{cell_hi(grid, 0, x), cell_hi(grid, 1, y), cell_hi(grid, 2, z)};
-        if (triangle_overlaps_box(v0, v1, v2, lo - margin, hi + margin))
-          f(std::uint64_t(x) + std::uint64_t(grid.resolution.nx) * (std::uint64_t(y) + std::uint64_t(grid.resolution.ny) * std::uint64_t(z)));
+        if (triangle_overlaps_box(v0, v1, v2, lo - margin, hi + margin)) f(index);
       }
     }
   }

@@ -47,7 +47,9 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
   constexpr bool AnyHit = Mode == GridWalk::any;
   constexpr bool Whole = Mode == GridWalk::whole;
   // Non-finite rays and d = 0 hit nothing (as in naive, whose test yields NaN).
-  if (m_refs.empty() || !is_finite(ray.o) || !is_finite(ray.d) || ray.d == Vec3f{0, 0, 0}) return false;
+  // A grid without references hits nothing; a counting walk still walks it
+  // (a counting grid's cells are found by walking it empty).
+  if ((TestTriangles && m_refs.empty()) || !is_finite(ray.o) || !is_finite(ray.d) || ray.d == Vec3f{0, 0, 0}) return false;
   if (!(ray.tmin <= ray.tmax)) return false;  // also NaN bounds: naive misses these too
   const Vec3d o(ray.o), d(ray.d);
   const GridInfo& g = m_info;

@@ -20,7 +20,7 @@ Calibration fit_calibration(std::span<const TimedLoad> measurements) {
 }
 
 nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> measurements,
-                               std::span<const TimedBuild> builds) {
+                               std::span<const TimedBuild> builds, std::span<const TimedNaiveLoad> naive) {
   nlohmann::ordered_json j;
   j["format"] = kCalibrationFormat;
   j["machine"] = c.machine;
@@ -29,6 +29,7 @@ nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> 
   j["eq10"] = to_json(c.eq10);
   j["extended"] = to_json(c.extended);
   j["build"] = to_json(c.build);
+  j["naive"] = to_json(c.naive);
   if (!measurements.empty()) {
     j["measurements"] = nlohmann::ordered_json::array();
     for (const TimedLoad& m : measurements) {
@@ -56,6 +57,17 @@ nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> 
                              {"N_c", b.cells},
                              {"seconds", b.seconds},
                              {"predicted_s", c.build.seconds(b.N, b.theta_tot, b.cells, c.build.threads)}});
+  }
+  if (!naive.empty()) {
+    j["naive_measurements"] = nlohmann::ordered_json::array();
+    for (const TimedNaiveLoad& m : naive)
+      j["naive_measurements"].push_back({{"label", m.label},
+                                         {"class", kRenderClassNames[m.load.ray_class]},
+                                         {"rays", m.load.rays},
+                                         {"N", m.load.triangles},
+                                         {"hit_fraction", m.load.hits / m.load.rays},
+                                         {"ns_per_ray", m.seconds / m.load.rays * 1e9},
+                                         {"predicted_ns_per_ray", c.naive.seconds(m.load) / m.load.rays * 1e9}});
   }
   return j;
 }
@@ -100,9 +112,9 @@ std::optional<Calibration> load_calibration(const std::filesystem::path& file) {
     throw InputError(file.string() + ": a calibration of another format (made by another Kappa): run kappa calibrate again");
   Calibration c;
   if (!from_json(j.value("eq10", nlohmann::json()), c.eq10) || !from_json(j.value("extended", nlohmann::json()), c.extended) ||
-      !from_json(j.value("build", nlohmann::json()), c.build))
+      !from_json(j.value("build", nlohmann::json()), c.build) || !from_json(j.value("naive", nlohmann::json()), c.naive))
     throw InputError(file.string() +
-                     ": not a Kappa calibration (expected eq10, extended and build constants, each a number >= 0)");
+                     ": not a Kappa calibration (expected eq10, extended, build and naive constants, each a number >= 0)");
   c.samples = j.value("samples", std::size_t(0));
   c.machine = j.value("machine", std::string());
   c.clock = j.value("clock", std::string());

@@ -11,18 +11,20 @@
 #include <nlohmann/json.hpp>
 
 #include "build_model.h"
+#include "naive_model.h"
 #include "time_model.h"
 
 namespace kappa {
 
 /// The calibration file's format; files of another one were made by another
 /// Kappa and are refused with a word to run `kappa calibrate` again.
-inline constexpr int kCalibrationFormat = 4;
+inline constexpr int kCalibrationFormat = 5;
 
 struct Calibration {
   TimeModel eq10 = eq10_model();
   TimeModel extended = extended_model(l2_cache_bytes());
   BuildModel build;  ///< the grid's build time (format 4 on), for --grid-res model
+  NaiveModel naive;  ///< the naive accelerator's traversal time (format 5 on), for --accel auto
   std::size_t samples = 0;
   std::string machine;  ///< what it was measured on
   std::string clock;    ///< the QueryClock's source ("tsc", "steady_clock")
@@ -36,7 +38,7 @@ struct Calibration {
 Calibration fit_calibration(std::span<const TimedLoad> measurements);
 
 nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> measurements = {},
-                               std::span<const TimedBuild> builds = {});
+                               std::span<const TimedBuild> builds = {}, std::span<const TimedNaiveLoad> naive = {});
 /// kappa_calibration.json beside the running executable (build/ for a build
 /// tree): where `kappa calibrate` writes and `kappa render` looks by default.
 std::filesystem::path default_calibration_path();

@@ -4,6 +4,8 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
+#include <atomic>
+
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -76,7 +78,8 @@ void search_unimodal(std::size_t count, std::size_t start, const std::function<d
     if (!(cost(i) <= least * (1 + tolerance))) break;
 }
 
-std::array<QueryLoad, kRenderClasses> count_segments(const UniformGrid& grid, std::span<const PilotSegment> segments) {
+std::array<QueryLoad, kRenderClasses> count_segments(const UniformGrid& grid, std::span<const PilotSegment> segments,
+                                                     std::optional<double> grid_bytes) {
   tbb::enumerable_thread_specific<ClassSums> per_thread;
   kappa::parallel_for(tbb::blocked_range<std::size_t>(0, segments.size(), 1024), [&](const auto& range) {
     ClassSums& sums = per_thread.local();
@@ -99,7 +102,7 @@ std::array<QueryLoad, kRenderClasses> count_segments(const UniformGrid& grid, st
       all.hits[k] += t.hits[k];
     }
   });
-  const double working_set = double(grid.bytes()) + double(grid.info().N * sizeof(Triangle));
+  const double working_set = grid_bytes.value_or(double(grid.bytes())) + double(grid.info().N * sizeof(Triangle));
   std::array<QueryLoad, kRenderClasses> loads{};
   for (std::size_t k = 0; k < kRenderClasses; ++k)
     loads[k] = QueryLoad{RenderClass(k),           double(all.rays[k]),        double(all.walks[k].cells),
@@ -108,17 +111,77 @@ std::array<QueryLoad, kRenderClasses> count_segments(const UniformGrid& grid, st
   return loads;
 }
 
-Candidate evaluate_candidate(const UniformGrid& grid, std::span<const PilotSegment> segments, const ChoiceSettings& settings) {
+namespace {
+
+/// Marks each cell a walk enters (accel/recorder.h), into a bitset the
+/// threads share.
+struct CellMarks {
+  std::uint64_t* bits;
+  template <class BoxFn>
+  void cell(std::uint64_t c, int, BoxFn&&) {
+    std::uint64_t& word = bits[c >> 6];
+    const std::uint64_t bit = std::uint64_t(1) << (c & 63);
+    // Most visits are to cells marked already: read before the atomic write.
+    if (!(std::atomic_ref<std::uint64_t>(word).load(std::memory_order_relaxed) & bit))
+      std::atomic_ref<std::uint64_t>(word).fetch_or(bit, std::memory_order_relaxed);
+  }
+  void test() {}
+  void hit() {}
+  void finish(const WalkCounts&, const WalkSegment&) {}
+};
+
+/// The whole grid's bytes at `theta_tot` references: offsets, occupancy
+/// bits and the reference array, as the grid counts its own.
+double whole_grid_bytes(std::uint64_t cells, double theta_tot) {
+  return double((cells + 1) * sizeof(std::uint32_t) + (cells + 63) / 64 * sizeof(std::uint64_t)) +
+         theta_tot * double(sizeof(TriangleId));
+}
+
+}  // namespace
+
+std::vector<std::uint64_t> visited_cells(const UniformGrid& grid, std::span<const PilotSegment> segments) {
+  std::vector<std::uint64_t> bits((grid.cell_count() + 63) / 64, 0);
+  kappa::parallel_for(tbb::blocked_range<std::size_t>(0, segments.size(), 1024), [&](const auto& range) {
+    CellMarks marks{bits.data()};
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      const PilotSegment& s = segments[i];
+      grid.count_closest_walk(s.ray, s.hit ? std::optional<float>(s.t_hit) : std::nullopt, marks);
+    }
+  });
+  return bits;
+}
+
+std::unique_ptr<UniformGrid> counting_grid(std::span<const Triangle> triangles, const GridResolution& res,
+                                           std::span<const PilotSegment> segments, std::uint64_t max_bytes) {
+  GridOptions options;
+  options.resolution = res;
+  options.max_bytes = max_bytes;
+  options.cells_to_fill = [segments](const UniformGrid& empty) { return visited_cells(empty, segments); };
+  return std::make_unique<UniformGrid>(triangles, options);
+}
+
+Candidate evaluate_candidate(const UniformGrid& grid, std::span<const PilotSegment> segments, const ChoiceSettings& settings,
+                             const OccupancyModel* occupancy) {
   const GridInfo& info = grid.info();
   Candidate c;
   c.res = info.resolution;
   c.lambda = info.N > 0 ? double(info.resolution.cells()) / double(info.N) : 0.0;
-  c.theta_tot = info.theta_tot;
-  c.bytes = grid.bytes() + std::uint64_t(settings.stats_bytes_per_cell * double(info.resolution.cells()));
-  const auto loads = count_segments(grid, segments);
+  double grid_bytes = double(grid.bytes());
+  if (info.partial) {
+    KAPPA_CHECK(occupancy != nullptr);
+    const double theta = occupancy->theta_tot(info.cell_size);
+    c.theta_tot = std::isfinite(theta) ? std::uint64_t(std::llround(theta)) : std::numeric_limits<std::uint64_t>::max();
+    grid_bytes = whole_grid_bytes(info.resolution.cells(), double(c.theta_tot));
+  } else {
+    c.theta_tot = info.theta_tot;
+  }
+  c.bytes = std::uint64_t(std::min(grid_bytes + settings.stats_bytes_per_cell * double(info.resolution.cells()), 1.8e19));
+  const auto loads = count_segments(grid, segments, grid_bytes);
+  // The model predicts thread-seconds (as calibrate times them); the frame's
+  // threads share them, while the build's model gives its wall time.
   for (std::size_t k = 0; k < kRenderClasses; ++k)
-    c.traversal_s += settings.traversal->seconds(loads[k]) * settings.rays_scale[k];
-  c.build_s = settings.build->seconds(double(info.N), double(info.theta_tot), double(info.resolution.cells()),
+    c.traversal_s += settings.traversal->seconds(loads[k]) * settings.rays_scale[k] / double(std::max(1, settings.threads));
+  c.build_s = settings.build->seconds(double(info.N), double(c.theta_tot), double(info.resolution.cells()),
                                       settings.threads);
   return c;
 }
@@ -138,42 +201,35 @@ std::vector<GridResolution> candidate_resolutions(std::span<const Triangle> tria
 }
 
 ResolutionChoice choose_resolution_by_model(std::span<const Triangle> triangles, std::span<const PilotSegment> segments,
-                                            const ChoiceSettings& settings, bool exhaustive) {
+                                            const ChoiceSettings& settings, bool exhaustive, const UniformGrid* whole) {
   const std::vector<GridResolution> resolutions = candidate_resolutions(triangles);
-  const double N = std::max(1.0, OccupancyModel(triangles).N);
+  const OccupancyModel occupancy(triangles);
+  const double N = std::max(1.0, occupancy.N);
   ResolutionChoice choice;
   constexpr double kNotFit = std::numeric_limits<double>::infinity();
   std::vector<double> total(resolutions.size(), -1.0);  // -1: not evaluated yet
-  std::vector<std::unique_ptr<UniformGrid>> grids(resolutions.size());
-  std::vector<std::size_t> evaluated_index(resolutions.size(), 0);
-  double least = kNotFit;
   const auto evaluate = [&](std::size_t i) {
     if (total[i] >= 0) return total[i];
-    GridOptions options;
-    options.resolution = resolutions[i];
-    options.max_bytes = settings.max_bytes;
-    std::unique_ptr<UniformGrid> grid;
-    try {
-      grid = std::make_unique<UniformGrid>(triangles, options);
-    } catch (const InputError& e) {
-      choice.skipped.push_back(resolutions[i].to_string() + ": " + e.what());
-      return total[i] = kNotFit;
+    Candidate c;
+    if (whole && whole->info().resolution == resolutions[i]) {
+      c = evaluate_candidate(*whole, segments, settings);
+    } else {
+      std::unique_ptr<UniformGrid> grid;
+      try {
+        grid = counting_grid(triangles, resolutions[i], segments, settings.max_bytes);
+      } catch (const InputError& e) {
+        choice.skipped.push_back(resolutions[i].to_string() + ": " + e.what());
+        return total[i] = kNotFit;
+      }
+      c = evaluate_candidate(*grid, segments, settings, &occupancy);
     }
-    const Candidate c = evaluate_candidate(*grid, segments, settings);
     if (c.bytes > settings.max_bytes) {
       choice.skipped.push_back(resolutions[i].to_string() + ": the grid and its per-cell statistics need " +
                                std::to_string(c.bytes) + " bytes, over --grid-max-bytes");
       return total[i] = kNotFit;
     }
-    evaluated_index[i] = choice.evaluated.size();
     choice.evaluated.push_back(c);
-    total[i] = c.total_s();
-    least = std::min(least, total[i]);
-    grids[i] = std::move(grid);
-    // Only grids that may still be chosen are kept: within the tolerance of the least so far.
-    for (std::size_t j = 0; j < grids.size(); ++j)
-      if (grids[j] && total[j] > least * (1 + settings.tolerance)) grids[j].reset();
-    return total[i];
+    return total[i] = c.total_s();
   };
 
   if (exhaustive) {
@@ -187,14 +243,26 @@ ResolutionChoice choose_resolution_by_model(std::span<const Triangle> triangles,
         start = i;
     search_unimodal(resolutions.size(), start, evaluate, settings.tolerance);
   }
-  if (choice.evaluated.empty())
-    throw InputError("--grid-res model: no candidate resolution fits --grid-max-bytes (" +
-                     std::to_string(settings.max_bytes) + " bytes)");
-  choice.chosen = smallest_within(choice.evaluated, settings.tolerance);
-  for (std::size_t i = 0; i < resolutions.size(); ++i)
-    if (total[i] >= 0 && total[i] != kNotFit && evaluated_index[i] == choice.chosen) choice.grid = std::move(grids[i]);
-  KAPPA_CHECK(choice.grid != nullptr);
-  return choice;
+  // The chosen one's whole grid: `whole` itself, or built now. Its bytes
+  // were predicted (eq 19): one that does not fit after all gives way to the
+  // next choice.
+  while (!choice.evaluated.empty()) {
+    choice.chosen = smallest_within(choice.evaluated, settings.tolerance);
+    const GridResolution& res = choice.evaluated[choice.chosen].res;
+    if (whole && whole->info().resolution == res) return choice;
+    GridOptions options;
+    options.resolution = res;
+    options.max_bytes = settings.max_bytes;
+    try {
+      choice.grid = std::make_unique<UniformGrid>(triangles, options);
+      return choice;
+    } catch (const InputError& e) {
+      choice.skipped.push_back(res.to_string() + ": " + e.what());
+      choice.evaluated.erase(choice.evaluated.begin() + std::ptrdiff_t(choice.chosen));
+    }
+  }
+  throw InputError("--grid-res model: no candidate resolution fits --grid-max-bytes (" +
+                   std::to_string(settings.max_bytes) + " bytes)");
 }
 
 }  // namespace kappa

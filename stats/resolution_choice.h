@@ -41,9 +41,9 @@ struct PilotSegment {
 struct Candidate {
   GridResolution res;
   double lambda = 0;           ///< N_c / N
-  std::uint64_t theta_tot = 0;
-  std::uint64_t bytes = 0;     ///< the grid's, plus the per-cell statistics' when they are on
-  double traversal_s = 0;      ///< N_r E(T): the frame's rays, by the extended model
+  std::uint64_t theta_tot = 0;  ///< the whole grid's: eq 19's for a counting grid (counting_grid), else its own
+  std::uint64_t bytes = 0;     ///< the whole grid's, plus the per-cell statistics' when they are on
+  double traversal_s = 0;      ///< N_r E(T): the frame's rays by the extended model, over the frame's threads (wall seconds)
   double build_s = 0;          ///< T_build, by the build model
   double total_s() const { return traversal_s + build_s; }
 };
@@ -66,12 +66,29 @@ struct ChoiceSettings {
 };
 
 /// Counts `segments` on `grid` (its walks without triangle tests) into one
-/// load per class, hits from the pilot, working set = the grid's bytes and
-/// the triangles'.
-std::array<QueryLoad, kRenderClasses> count_segments(const UniformGrid& grid, std::span<const PilotSegment> segments);
+/// load per class, hits from the pilot, working set = `grid_bytes` (default:
+/// the grid's own bytes) and the triangles'.
+std::array<QueryLoad, kRenderClasses> count_segments(const UniformGrid& grid, std::span<const PilotSegment> segments,
+                                                     std::optional<double> grid_bytes = std::nullopt);
+
+/// The cells the segments' walks visit on `grid`, as a bitset of N_c bits:
+/// its lists play no part (a walk stops at the pilot's hit), so an empty grid
+/// of the resolution gives them.
+std::vector<std::uint64_t> visited_cells(const UniformGrid& grid, std::span<const PilotSegment> segments);
+
+/// A candidate's grid for counting `segments`: the lists of the cells they
+/// visit only (GridOptions::cells_to_fill), so its counting walks are the
+/// whole grid's while its build skips the separating-axis tests of every
+/// other cell. Throws InputError as the grid does (e.g. offsets over
+/// `max_bytes`).
+std::unique_ptr<UniformGrid> counting_grid(std::span<const Triangle> triangles, const GridResolution& res,
+                                           std::span<const PilotSegment> segments, std::uint64_t max_bytes);
 
 /// The candidate's predicted costs from its grid and the pilot's segments.
-Candidate evaluate_candidate(const UniformGrid& grid, std::span<const PilotSegment> segments, const ChoiceSettings& settings);
+/// A counting grid's whole Theta_tot, bytes and working set are predicted,
+/// Theta_tot by eq 19 (`occupancy`, required then).
+Candidate evaluate_candidate(const UniformGrid& grid, std::span<const PilotSegment> segments, const ChoiceSettings& settings,
+                             const OccupancyModel* occupancy = nullptr);
 
 /// The candidate resolutions: N_c = lambda N for lambda = 32 * 2^(k/2),
 /// k = kMinStep ... kMaxStep (lambda 1/4 ... 1024 in steps of sqrt 2), each
@@ -92,17 +109,22 @@ void search_unimodal(std::size_t count, std::size_t start, const std::function<d
 struct ResolutionChoice {
   std::vector<Candidate> evaluated;  ///< in the order they were evaluated
   std::size_t chosen = 0;            ///< index into `evaluated`
-  std::unique_ptr<UniformGrid> grid;  ///< the chosen candidate's grid, built while choosing
+  /// The chosen candidate's whole grid, built after the choice; null when
+  /// the chosen one is `whole`'s resolution (that grid is the frame's).
+  std::unique_ptr<UniformGrid> grid;
   std::vector<std::string> skipped;  ///< candidates over the memory budget
 };
 
 /// Walks down the candidates' predicted total from the one nearest lambda =
 /// 32 (the cost is unimodal in N_c: traversal falls, build and the empty
 /// cells' walk rise), evaluating a candidate only when the search reaches it,
-/// then takes smallest_within over those evaluated. With `exhaustive` every
-/// candidate is evaluated (the tests compare the two). Throws InputError when
-/// no candidate fits the memory budget.
+/// then takes smallest_within over those evaluated. Each candidate counts on
+/// its counting_grid, except one of `whole`'s resolution (the pilot's grid,
+/// built whole), which counts on `whole`. With `exhaustive` every candidate
+/// is evaluated (the tests compare the two). Throws InputError when no
+/// candidate fits the memory budget.
 ResolutionChoice choose_resolution_by_model(std::span<const Triangle> triangles, std::span<const PilotSegment> segments,
-                                            const ChoiceSettings& settings, bool exhaustive = false);
+                                            const ChoiceSettings& settings, bool exhaustive = false,
+                                            const UniformGrid* whole = nullptr);
 
 }  // namespace kappa

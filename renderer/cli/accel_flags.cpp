@@ -66,8 +66,10 @@ CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi) {
       "whole number");
 }
 
-void add_accel_flag(CLI::App& app, std::string& accel, const std::string& help) {
-  app.add_option("--accel", accel, help)->check(CLI::IsMember(accelerator_names()))->capture_default_str();
+void add_accel_flag(CLI::App& app, std::string& accel, const std::string& help, bool auto_allowed) {
+  std::vector<std::string> names = accelerator_names();
+  if (auto_allowed) names.insert(names.begin(), "auto");
+  app.add_option("--accel", accel, help)->check(CLI::IsMember(names))->capture_default_str();
 }
 
 void add_accel_list_flag(CLI::App& app, std::vector<std::string>& accels, const std::string& help) {

@@ -11,8 +11,9 @@
 
 namespace kappa {
 
-/// --accel NAME, one of accelerator_names().
-void add_accel_flag(CLI::App& app, std::string& accel, const std::string& help);
+/// --accel NAME, one of accelerator_names(); with `auto_allowed` (kappa
+/// render) also `auto` (renderer/render/accel_choice.h).
+void add_accel_flag(CLI::App& app, std::string& accel, const std::string& help, bool auto_allowed = false);
 /// --accel A,B,..., each one of accelerator_names().
 void add_accel_list_flag(CLI::App& app, std::vector<std::string>& accels, const std::string& help);
 

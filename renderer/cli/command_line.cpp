@@ -18,7 +18,13 @@ namespace {
 /// `converge` only those kappa converge takes (the film's outputs, the budgets
 /// and --spp are its own).
 void add_render_flags(CLI::App& render, RenderOptions& o, bool converge) {
-  add_accel_flag(render, o.accel, "accelerator");
+  if (converge)
+    add_accel_flag(render, o.accel, "accelerator");
+  else
+    add_accel_flag(render, o.accel,
+                   "accelerator; auto: the exact one the cost model predicts fastest for the frame (the grid when "
+                   "the render counts cells)",
+                   true);
   add_grid_flags(render, o.build, !converge);
   if (!converge)
     render.add_option("--spp", o.spp, "samples per pixel (with a budget: the most, if given)")
@@ -212,7 +218,8 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateOptions& o) {
       ->capture_default_str();
   calibrate.add_flag("--no-generated", o.no_generated,
                      "measure only the scenes given, not also the generated soups of 3,000, 30,000 and 300,000 "
-                     "triangles that span the working-set sizes");
+                     "triangles that span the working-set sizes (the naive model's room and soups of 100 and 1,000 triangles are "
+                     "measured always)");
   calibrate.add_option("--repeat", o.repeat, "timed passes (median)")->check(CLI::Range(1, 100))->capture_default_str();
   calibrate.add_option("--threads", o.threads,
                        "threads walking at once; times are thread-seconds, as the render report measures them "

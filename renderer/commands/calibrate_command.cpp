@@ -11,6 +11,7 @@
 
 #include "accel/factory.h"
 #include "accel/grid.h"
+#include "accel/naive.h"
 #include "accel/thread_limit.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/output_guard.h"
@@ -38,6 +39,14 @@ const Generated kGenerated[] = {{false, 3000, {8, 32}},    {false, 30000, {8, 32
                                 {true, 20000, {2, 8, 32}}, {true, 200000, {2, 8, 32}}, {true, 1000000, {2, 8, 32}}};
 /// A class with fewer rays in a calibration frame is not a measurement.
 constexpr std::uint64_t kMinRays = 256;
+/// The naive model's frames: every measured scene of at most this many
+/// triangles (the generated soup of 3,000 among them), and generated soups of
+/// these sizes, at a quarter of the
+/// samples (a naive query of 3,000 triangles costs about a hundred grid
+/// queries), so that T0 and Th are told apart across N while the naive
+/// frames add a few seconds.
+constexpr std::size_t kNaiveMaxTriangles = 4096;
+const std::size_t kNaiveSoups[] = {0, 100, 1000};  // 0: the room alone, 12 triangles, which pins T0
 
 /// One calibration frame: a scene at one density, its grid, and what each
 /// pass over it measured.
@@ -75,6 +84,31 @@ std::vector<TimedLoad> measurements_of(Frame& frame) {
     m.seconds = s[s.size() / 2];
     m.label = frame.scene->name + " " + frame.grid->info().resolution.to_string() + " " + kRenderClassNames[k];
     out.push_back(std::move(m));
+  }
+  return out;
+}
+
+/// One naive frame: every class with enough rays, its median thread-seconds
+/// over `repeat` timed passes (each after an untimed one, as the grid's).
+std::vector<TimedNaiveLoad> measure_naive(const Scene& scene, const RenderSettings& settings, int repeat) {
+  const NaiveAccelerator naive(scene.triangles);
+  std::array<std::vector<double>, kRenderClasses> seconds;
+  std::array<ClassTotals, kRenderClasses> totals{};
+  for (int pass = 0; pass < 2 * repeat; ++pass) {
+    Film film(scene.width, scene.height, AovSelection{});
+    const RenderResult result = render(scene, naive, settings, film);
+    if (pass % 2 == 0) continue;  // warms the caches; its times are dropped
+    for (std::size_t k = 0; k < kRenderClasses; ++k) {
+      totals[k] = result.counters->classes[k].totals;
+      seconds[k].push_back(QueryClock::get().seconds(result.counters->ticks[k]));
+    }
+  }
+  std::vector<TimedNaiveLoad> out;
+  for (std::size_t k = 0; k < kRenderClasses; ++k) {
+    if (totals[k].rays < kMinRays) continue;
+    std::sort(seconds[k].begin(), seconds[k].end());
+    out.push_back({NaiveLoad{RenderClass(k), double(totals[k].rays), double(totals[k].hits), double(scene.triangles.size())},
+                   seconds[k][seconds[k].size() / 2], scene.name + " naive " + kRenderClassNames[k]});
   }
   return out;
 }
@@ -171,8 +205,30 @@ int run_calibrate(const CalibrateOptions& options) {
                   m.load.working_set_bytes / double(1 << 20));
       measurements.push_back(std::move(m));
     }
+  // The naive model's frames, after the grid's (their order does not matter:
+  // one scene at a time, each pass warmed).
+  RenderSettings naive_settings = settings;
+  naive_settings.spp = std::max(1, options.spp / 4);
+  std::vector<TimedNaiveLoad> naive;
+  const auto measure = [&](const Scene& scene) {
+    for (TimedNaiveLoad& m : measure_naive(scene, naive_settings, options.repeat)) {
+      std::printf("  %-36s %9.0f rays %8.1f ns/ray %8.0f triangles\n", m.label.c_str(), m.load.rays,
+                  m.seconds / m.load.rays * 1e9, m.load.triangles);
+      naive.push_back(std::move(m));
+    }
+  };
+  for (const Measured& s : scenes)
+    if (s.scene.triangles.size() <= kNaiveMaxTriangles) measure(s.scene);
+  // The soups even with --no-generated: the given scenes alone may all be
+  // of one size, which cannot tell T0 from Th.
+  for (const std::size_t n : kNaiveSoups) {
+    Scene soup = generated_soup_scene(n, 1);
+    soup.width = soup.height = options.size;
+    measure(soup);
+  }
   Calibration cal = fit_calibration(measurements);
   fit(cal.build, builds, threads);
+  fit(cal.naive, naive);
   cal.machine = machine_name() + ", " + std::to_string(threads) + " walking";
   cal.clock = QueryClock::get().source();
   std::printf("eq 10: T0 %.2f ns, Ts %.2f ns, Th %.2f ns (rms relative error %.1f %%)\n", cal.eq10.ns[0], cal.eq10.ns[1],
@@ -186,8 +242,11 @@ int run_calibrate(const CalibrateOptions& options) {
               "error %.1f %% over %zu builds)\n",
               threads, cal.build.ns[0], cal.build.ns[1], cal.build.ns[2], 100 * cal.build.rms_relative_error,
               builds.size());
+  std::printf("naive: T0 %.2f ns, Th %.3f ns, Th_occluded %.3f ns per triangle (rms relative error %.1f %% over %zu "
+              "measurements)\n",
+              cal.naive.ns[0], cal.naive.ns[1], cal.naive.ns[2], 100 * cal.naive.rms_relative_error, naive.size());
   std::printf("%zu measurements -> %s\n", cal.samples, out_path.c_str());
-  write_and_commit(out, to_json(cal, measurements, builds).dump(2) + "\n");
+  write_and_commit(out, to_json(cal, measurements, builds, naive).dump(2) + "\n");
   return 0;
 }
 

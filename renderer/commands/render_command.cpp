@@ -26,7 +26,7 @@
 #include "renderer/io/exr_output.h"
 #include "renderer/io/output_guard.h"
 #include "renderer/render/frame_accumulator.h"
-#include "renderer/render/grid_choice.h"
+#include "renderer/render/accel_choice.h"
 #include "renderer/render/integrator.h"
 #include "renderer/render/sampler_kind.h"
 #include "renderer/report/render_record.h"
@@ -127,16 +127,18 @@ int run_render(const RenderOptions& options) {
   AovSelection aov = parse_aovs(options.aov);
   aov.variance = aov.variance || budget.target_relmse > 0;  // the estimate's inputs, per pixel
   aov.spp = aov.spp || budget.adaptive;
-  if (!options.cell_map.empty() && (options.stats != "on" || options.accel != "grid"))
+  // auto counts as the grid here: a render that counts cells runs a cell-based accelerator.
+  const bool cell_based = options.accel == "grid" || options.accel == "auto";
+  if (!options.cell_map.empty() && (options.stats != "on" || !cell_based))
     throw InputError("--cell-map: needs --accel grid and --stats on");
   if (const auto ext = std::filesystem::path(options.cell_map).extension(); !options.cell_map.empty() && ext != ".exr" &&
                                                                             ext != ".png")
     throw InputError("--cell-map: '" + options.cell_map + "' must end in .exr or .png");
   RenderSettings settings = render_settings_of(options, aov);  // a bad setting is refused before loading
   const bool grid_by_model = options.build.grid_res == "model";
-  if (grid_by_model && options.accel != "grid")
-    throw InputError("--grid-res model: needs --accel grid (it chooses the grid's resolution)");
-  if (aov.cost && (options.stats != "on" || options.accel != "grid"))
+  if (grid_by_model && !cell_based)
+    throw InputError("--grid-res model: needs --accel grid or auto (it chooses the grid's resolution)");
+  if (aov.cost && (options.stats != "on" || !cell_based))
     throw InputError("--aov cost: needs --accel grid and --stats on (it counts the grid's cells and tests)");
   if (!options.out.empty() && std::filesystem::path(options.out).extension() != ".exr")
     throw InputError("--out: '" + options.out + "' must end in .exr");
@@ -184,22 +186,18 @@ int run_render(const RenderOptions& options) {
   if (!calibration) calibration = builtin_calibration();
 
   const auto build_start = std::chrono::steady_clock::now();
-  std::unique_ptr<Accelerator> accel;
-  std::optional<GridChoice> grid_choice;
-  if (grid_by_model) {
-    // The frame's paths: its pixels at --spp (a budget's cap, or the default
-    // 64 when a budget decides how many).
-    const double frame_paths = double(scene.width) * double(scene.height) * double(options.spp);
-    grid_choice = with_progress(show_progress, [&](TaskProgress* progress) {
-      begin_phase(progress, "grid: choosing the resolution by the cost model", 0);
-      return choose_grid_by_model(scene, settings, frame_paths, options.build, *calibration, calibration->source);
-    });
-    accel = std::move(grid_choice->grid);
-  } else {
-    accel = with_progress(show_progress, [&](TaskProgress* progress) {
-      return make_accelerator(options.accel, scene.triangles, options.build, progress);
-    });
-  }
+  AccelRequest request;
+  request.accel = options.accel;
+  request.build = options.build;
+  request.needs_cells = settings.stats || aov.cost || !options.cell_map.empty();
+  // The frame's paths: its pixels at --spp (a budget's cap, or the default
+  // 64 when a budget decides how many).
+  request.frame_paths = double(scene.width) * double(scene.height) * double(options.spp);
+  FrameAccelerator frame_accel = with_progress(show_progress, [&](TaskProgress* progress) {
+    return build_frame_accelerator(scene, settings, request, *calibration, progress);
+  });
+  std::unique_ptr<Accelerator> accel = std::move(frame_accel.accel);
+  const std::optional<GridChoice>& grid_choice = frame_accel.grid_choice;
   const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   const int threads = active_threads();
@@ -281,6 +279,7 @@ int run_render(const RenderOptions& options) {
                                budget.target_relmse},
                     result, calibration, to_json(record));
   if (grid_choice) report["grid_choice"] = grid_choice->report;
+  if (!frame_accel.accel_choice.is_null()) report["accel_choice"] = frame_accel.accel_choice;
 
   if (cell_map_out && result.counters) {
     if (result.counters->classes[0].per_cell()) {

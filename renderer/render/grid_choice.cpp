@@ -4,38 +4,49 @@
 #include <cstdio>
 
 #include "accel/thread_limit.h"
-#include "renderer/render/pilot.h"
 #include "stats/counters.h"
-#include "stats/resolution_choice.h"
 
 namespace kappa {
 
-GridChoice choose_grid_by_model(const Scene& scene, const RenderSettings& settings, double frame_paths,
-                                const AccelOptions& build, const Calibration& calibration,
-                                const std::string& calibration_name) {
+FramePilot run_frame_pilot(const Scene& scene, const RenderSettings& settings, double frame_paths) {
   const auto start = std::chrono::steady_clock::now();
+  FramePilot out;
   // The pilot's hits from the grid `auto` builds at the default budget (any
-  // exact accelerator gives the same; it is freed before the frame renders,
-  // and --grid-max-bytes bounds the candidates).
-  const UniformGrid pilot_grid(scene.triangles, GridOptions{});
-  const Pilot pilot = run_pilot(scene, scene.width, scene.height, pilot_pixels(frame_paths), pilot_grid, settings);
+  // exact accelerator gives the same; --grid-max-bytes bounds the candidates).
+  out.grid = std::make_unique<UniformGrid>(scene.triangles, GridOptions{});
+  out.pilot = run_pilot(scene, scene.width, scene.height, pilot_pixels(frame_paths), *out.grid, settings);
+  out.frame_paths = frame_paths;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
 
-  ChoiceSettings choice_settings;
-  choice_settings.traversal = &calibration.extended;
-  choice_settings.build = &calibration.build;
-  const double pilot_paths = double(pilot.width) * double(pilot.height);
-  choice_settings.rays_scale.fill(frame_paths / pilot_paths);
-  choice_settings.threads = active_threads();
-  choice_settings.max_bytes = build.max_bytes();
+ChoiceSettings frame_choice_settings(const FramePilot& pilot, const RenderSettings& settings, const AccelOptions& build,
+                                     const Calibration& calibration) {
+  ChoiceSettings s;
+  s.traversal = &calibration.extended;
+  s.build = &calibration.build;
+  const double pilot_paths = double(pilot.pilot.width) * double(pilot.pilot.height);
+  s.rays_scale.fill(pilot.frame_paths / pilot_paths);
+  s.threads = active_threads();
+  s.max_bytes = build.max_bytes();
   // With statistics on, one shared set of per-cell arrays per class (the
   // least a frame keeps per cell; sampled paths count into it).
-  choice_settings.stats_bytes_per_cell = settings.stats ? double(kRenderClasses * CellArrays::kBytesPerCell) : 0.0;
-  ResolutionChoice choice = choose_resolution_by_model(scene.triangles, pilot.segments, choice_settings);
+  s.stats_bytes_per_cell = settings.stats ? double(kRenderClasses * CellArrays::kBytesPerCell) : 0.0;
+  return s;
+}
+
+GridChoice choose_grid_by_model(const Scene& scene, const RenderSettings& settings, FramePilot& pilot,
+                                const AccelOptions& build, const Calibration& calibration) {
+  const auto start = std::chrono::steady_clock::now();
+  const ChoiceSettings choice_settings = frame_choice_settings(pilot, settings, build, calibration);
+  ResolutionChoice choice =
+      choose_resolution_by_model(scene.triangles, pilot.pilot.segments, choice_settings, false, pilot.grid.get());
 
   GridChoice out;
-  out.grid = std::move(choice.grid);
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.grid = choice.grid ? std::move(choice.grid) : std::move(pilot.grid);
+  out.seconds = pilot.seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const Candidate& chosen = choice.evaluated[choice.chosen];
+  out.predicted_s = chosen.total_s();
   nlohmann::ordered_json candidates = nlohmann::ordered_json::array();
   for (const Candidate& c : choice.evaluated)
     candidates.push_back({{"res", c.res.to_string()},
@@ -47,22 +58,26 @@ GridChoice choose_grid_by_model(const Scene& scene, const RenderSettings& settin
                           {"build_s", c.build_s},
                           {"predicted_s", c.total_s()}});
   std::uint64_t pilot_rays = 0;
-  for (std::uint64_t r : pilot.rays) pilot_rays += r;
+  for (std::uint64_t r : pilot.pilot.rays) pilot_rays += r;
   out.report = {{"requested", "model"},
-                {"calibration", calibration_name},
+                {"calibration", calibration.source},
                 {"chosen", chosen.res.to_string()},
                 {"predicted_s", chosen.total_s()},
                 {"predicted_traversal_s", chosen.traversal_s},
                 {"predicted_build_s", chosen.build_s},
                 {"tolerance", choice_settings.tolerance},
-                {"frame_paths", frame_paths},
-                {"pilot", {{"width", pilot.width}, {"height", pilot.height}, {"rays", pilot_rays}, {"seconds", pilot.seconds}}},
+                {"frame_paths", pilot.frame_paths},
+                {"pilot",
+                 {{"width", pilot.pilot.width},
+                  {"height", pilot.pilot.height},
+                  {"rays", pilot_rays},
+                  {"seconds", pilot.pilot.seconds}}},
                 {"seconds", out.seconds},
                 {"candidates", candidates},
                 {"skipped", choice.skipped}};
   char text[160];
-  std::snprintf(text, sizeof text, "chosen by the cost model (%zu candidates, predicted %.3f s), in %.3f s", choice.evaluated.size(),
-                chosen.total_s(), out.seconds);
+  std::snprintf(text, sizeof text, "chosen by the cost model (%zu candidates, predicted %.3f s), in %.3f s",
+                choice.evaluated.size(), chosen.total_s(), out.seconds);
   out.summary = text;
   return out;
 }

@@ -12,24 +12,43 @@
 #include "accel/factory.h"
 #include "accel/grid.h"
 #include "renderer/render/frame.h"
+#include "renderer/render/pilot.h"
 #include "renderer/scene/scene.h"
 #include "stats/calibration.h"
+#include "stats/resolution_choice.h"
 
 namespace kappa {
+
+/// A frame's pilot and the grid it ran through: what --grid-res model and
+/// --accel auto predict from (one pilot when both are asked for).
+struct FramePilot {
+  std::unique_ptr<UniformGrid> grid;  ///< the grid `auto` builds at the default budget
+  Pilot pilot;
+  double frame_paths = 0;  ///< the frame's paths (pixels x spp, or the budget's cap)
+  double seconds = 0;      ///< the pilot grid's build and the pilot
+};
+
+/// Builds the pilot grid and runs the pilot of a frame of `frame_paths` paths.
+FramePilot run_frame_pilot(const Scene& scene, const RenderSettings& settings, double frame_paths);
+
+/// The chooser's settings for the frame: the calibration's models, the
+/// pilot's rays scaled to the frame's, the frame's threads and memory budget.
+ChoiceSettings frame_choice_settings(const FramePilot& pilot, const RenderSettings& settings, const AccelOptions& build,
+                                     const Calibration& calibration);
 
 struct GridChoice {
   std::unique_ptr<UniformGrid> grid;  ///< the chosen resolution's grid
   nlohmann::ordered_json report;      ///< the report's grid_choice section
   std::string summary;                ///< for the summary line: "chosen by the cost model from ..."
+  double predicted_s = 0;             ///< the chosen candidate's predicted traversal and build
   double seconds = 0;                 ///< pilot, candidates and the chosen grid's build
 };
 
-/// Chooses and builds the frame's grid. `frame_paths` is the frame's paths
-/// (pixels x spp, or the budget's cap); `calibration_name` is the file the
-/// constants came from or "built-in". Throws InputError when no candidate
-/// fits `build`'s memory budget.
-GridChoice choose_grid_by_model(const Scene& scene, const RenderSettings& settings, double frame_paths,
-                                const AccelOptions& build, const Calibration& calibration,
-                                const std::string& calibration_name);
+/// Chooses and builds the frame's grid from `pilot` (whose grid becomes the
+/// frame's when its resolution is chosen); the calibration's `source` names
+/// it in the report. Throws InputError when no candidate fits `build`'s
+/// memory budget.
+GridChoice choose_grid_by_model(const Scene& scene, const RenderSettings& settings, FramePilot& pilot,
+                                const AccelOptions& build, const Calibration& calibration);
 
 }  // namespace kappa

@@ -12,7 +12,8 @@ nlohmann::ordered_json report_header(const Scene& scene, const Accelerator& acce
   j["scene"] = scene.source.string();
   j["load_s"] = scene.load_s;
   j["accel"] = std::string(accel.name());
-  j["grid_choice"] = nullptr;  // how --grid-res model chose, in a render that asked for it
+  j["accel_choice"] = nullptr;  // how --accel auto chose, in a render that asked for it
+  j["grid_choice"] = nullptr;   // how --grid-res model chose, in a render that asked for it
   return j;
 }
 

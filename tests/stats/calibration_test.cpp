@@ -108,6 +108,7 @@ TEST(Calibration, FileRoundTripAndErrors) {
   for (std::size_t k = 0; k < c.extended.ns.size(); ++k) c.extended.ns[k] = 0.5 + double(k);
   c.build.ns = {14, 130, 1.5};
   c.build.threads = 2;
+  c.naive.ns = {40, 2.5, 0.75};
   c.samples = 9;
   test::write_file(tmp / "c.json", to_json(c).dump());
   const auto back = load_calibration(tmp / "c.json");
@@ -117,12 +118,18 @@ TEST(Calibration, FileRoundTripAndErrors) {
   EXPECT_EQ(back->extended.cache_bytes, c.extended.cache_bytes);
   EXPECT_EQ(back->build.ns, c.build.ns);
   EXPECT_EQ(back->build.threads, 2);
+  EXPECT_EQ(back->naive.ns, c.naive.ns);
   EXPECT_EQ(back->source, (tmp / "c.json").string());
   // A file of this format without the build model's constants (format 3's content) is not a calibration.
   nlohmann::json no_build = to_json(c);
   no_build.erase("build");
   test::write_file(tmp / "no_build.json", no_build.dump());
   EXPECT_THROW(load_calibration(tmp / "no_build.json"), InputError);
+  // Nor one without the naive model's (format 4's content).
+  nlohmann::json no_naive = to_json(c);
+  no_naive.erase("naive");
+  test::write_file(tmp / "no_naive.json", no_naive.dump());
+  EXPECT_THROW(load_calibration(tmp / "no_naive.json"), InputError);
   test::write_file(tmp / "bad.json", "{\"format\": " + std::to_string(kCalibrationFormat) +
                                           ", \"eq10\": {\"constants\": {\"T0_ns\": \"fast\"}}}");
   EXPECT_THROW(load_calibration(tmp / "bad.json"), InputError);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <ranges>
 #include <limits>
 #include <random>
 
@@ -154,19 +155,19 @@ TEST(ResolutionChoice, TheSearchFindsTheBruteForceChoiceOverEveryResolution) {
   for (const double scale : {10.0, 1000.0, 100000.0}) {  // few rays: the build weighs; many: the walk does
     const ChoiceSettings settings = models.settings(scale);
     // Brute force, independently of the chooser's bookkeeping: every candidate built and predicted.
+    const OccupancyModel occupancy(tris);
     std::vector<Candidate> all;
-    for (const GridResolution& r : candidate_resolutions(tris)) {
-      GridOptions options;
-      options.resolution = r;
-      all.push_back(evaluate_candidate(UniformGrid(tris, options), segments, settings));
-    }
+    for (const GridResolution& r : candidate_resolutions(tris))
+      all.push_back(evaluate_candidate(*counting_grid(tris, r, segments, settings.max_bytes), segments, settings, &occupancy));
     ASSERT_GT(all.size(), 10u);
     const GridResolution best = all[smallest_within(all)].res;
     const ResolutionChoice searched = choose_resolution_by_model(tris, segments, settings);
     const ResolutionChoice exhaustive = choose_resolution_by_model(tris, segments, settings, true);
     EXPECT_EQ(exhaustive.evaluated[exhaustive.chosen].res, best) << scale;
     EXPECT_EQ(searched.evaluated[searched.chosen].res, best) << scale;
-    EXPECT_EQ(searched.grid->info().resolution, best) << scale;  // the chosen candidate's own grid
+    ASSERT_TRUE(searched.grid);
+    EXPECT_EQ(searched.grid->info().resolution, best) << scale;  // the chosen candidate's whole grid
+    EXPECT_FALSE(searched.grid->info().partial);
     EXPECT_LT(searched.evaluated.size(), all.size()) << scale;   // the search skipped some
     EXPECT_EQ(exhaustive.evaluated.size(), all.size()) << scale;
   }
@@ -176,6 +177,72 @@ TEST(ResolutionChoice, TheSearchFindsTheBruteForceChoiceOverEveryResolution) {
     return c.evaluated[c.chosen].res.cells();
   };
   EXPECT_GT(cells_at(100000.0), cells_at(10.0));
+}
+
+TEST(ResolutionChoice, ACountingGridCountsTheSegmentsAsTheWholeGridDoesWithFewerReferences) {
+  const std::vector<Triangle> tris = cluster_in_a_box();
+  const std::vector<PilotSegment> segments = segments_for(tris, 1500);
+  const OccupancyModel occupancy(tris);
+  for (const int side : {6, 23, 64}) {
+    SCOPED_TRACE(side);
+    const GridResolution res{side, side, side};
+    GridOptions options;
+    options.resolution = res;
+    const UniformGrid whole(tris, options);
+    const auto partial = counting_grid(tris, res, segments, options.max_bytes);
+    EXPECT_TRUE(partial->info().partial);
+    EXPECT_FALSE(whole.info().partial);
+    // Every visited cell holds the whole grid's list; the others are empty.
+    const std::vector<std::uint64_t> visited = visited_cells(whole, segments);
+    EXPECT_EQ(visited_cells(*partial, segments), visited);
+    std::uint64_t visited_refs = 0, cells_visited = 0;
+    for (std::uint64_t c = 0; c < whole.cell_count(); ++c) {
+      const bool v = (visited[c >> 6] >> (c & 63)) & 1;
+      cells_visited += v;
+      if (v) {
+        visited_refs += whole.cell(c).size();
+        ASSERT_TRUE(std::ranges::equal(partial->cell(c), whole.cell(c)))
+            << c << ": " << partial->cell(c).size() << " of " << whole.cell(c).size();
+      } else {
+        ASSERT_TRUE(partial->cell(c).empty()) << c;
+      }
+    }
+    EXPECT_GT(cells_visited, 0u);
+    EXPECT_LT(cells_visited, whole.cell_count());
+    EXPECT_EQ(partial->info().theta_tot, visited_refs);
+    EXPECT_LT(partial->info().theta_tot, whole.info().theta_tot);
+    // Its counts are the whole grid's, with the whole grid's working set.
+    const auto a = count_segments(whole, segments);
+    const auto b = count_segments(*partial, segments, double(whole.bytes()));
+    for (std::size_t k = 0; k < kRenderClasses; ++k) {
+      EXPECT_EQ(a[k].cells, b[k].cells);
+      EXPECT_EQ(a[k].occupied, b[k].occupied);
+      EXPECT_EQ(a[k].tests, b[k].tests);
+      EXPECT_EQ(a[k].skips, b[k].skips);
+      EXPECT_EQ(a[k].working_set_bytes, b[k].working_set_bytes);
+    }
+    // Its candidate's Theta_tot is eq 19's for the whole grid; the whole grid's candidate, its own.
+    const FixedModels models;
+    const Candidate predicted = evaluate_candidate(*partial, segments, models.settings(1), &occupancy);
+    EXPECT_EQ(predicted.theta_tot, std::uint64_t(std::llround(occupancy.theta_tot(whole.info().cell_size))));
+    EXPECT_EQ(evaluate_candidate(whole, segments, models.settings(1)).theta_tot, whole.info().theta_tot);
+    EXPECT_NEAR(double(predicted.theta_tot), double(whole.info().theta_tot), 0.5 * double(whole.info().theta_tot));
+  }
+}
+
+TEST(ResolutionChoice, ThePilotsWholeGridIsReusedWhenItsResolutionIsChosen) {
+  const std::vector<Triangle> tris = cluster_in_a_box();
+  const std::vector<PilotSegment> segments = segments_for(tris, 1000);
+  const FixedModels models;
+  const ChoiceSettings settings = models.settings(1000.0);
+  const ResolutionChoice free_choice = choose_resolution_by_model(tris, segments, settings);
+  GridOptions options;
+  options.resolution = free_choice.evaluated[free_choice.chosen].res;
+  const UniformGrid whole(tris, options);
+  const ResolutionChoice reused = choose_resolution_by_model(tris, segments, settings, false, &whole);
+  EXPECT_EQ(reused.evaluated[reused.chosen].res, whole.info().resolution);
+  EXPECT_FALSE(reused.grid);  // the caller's grid is the frame's
+  EXPECT_EQ(reused.evaluated[reused.chosen].theta_tot, whole.info().theta_tot);  // counted on it, not predicted
 }
 
 TEST(ResolutionChoice, CandidatesOverTheMemoryBudgetAreSkippedAndNoneFittingIsAnError) {

@@ -118,8 +118,9 @@ TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
   for (int k = 0; k < 5; ++k)
     constants += ", \"Ts_miss_" + std::string(classes[k]) + "_ns\": " + std::to_string(2 + k) + ", \"Th_miss_" +
                 classes[k] + "_ns\": " + std::to_string(3 + k);
-  test::write_file(tmp / "cal.json", R"({"format": 4, "machine": "test", "clock": "tsc", "samples": 0,
+  test::write_file(tmp / "cal.json", R"({"format": 5, "machine": "test", "clock": "tsc", "samples": 0,
     "eq10": {"constants": {"T0_ns": 20, "Ts_ns": 3, "Th_ns": 7}},
+    "naive": {"constants": {"T0_ns": 30, "Th_ns": 2, "Th_occluded_ns": 1}},
     "build": {"threads": 1, "constants": {"per_triangle_ns": 50, "per_reference_ns": 20, "per_cell_ns": 2}},
     "extended": {"cache_bytes": 1024, "constants": {)" + constants + "}}}");
   const auto r = test::run_kappa({"render", cornell(), "--spp", "2", "--width", "24", "--height", "24", "--out",

@@ -76,7 +76,7 @@ TEST(HostileInput, NoOutputReplacesAnInputOfTheRun) {
     expect_refused_and_untouched(run_kappa(c.args, tmp.path()), c.input, c.before);
   }
   // The calibration file a render reads is an input too.
-  write_file(tmp / "cal.json", R"({"format": 4, "eq10": {"constants": {"T0_ns": 20, "Ts_ns": 3, "Th_ns": 7}}})");
+  write_file(tmp / "cal.json", R"({"format": 5, "eq10": {"constants": {"T0_ns": 20, "Ts_ns": 3, "Th_ns": 7}}})");
   std::vector<std::string> args = cheap_render(scene, out);
   args.insert(args.end(), {"--calibration", (tmp / "cal.json").string(), "--report", (tmp / "cal.json").string()});
   expect_refused_and_untouched(run_kappa(args, tmp.path()), tmp / "cal.json", read_file(tmp / "cal.json"));

@@ -106,8 +106,14 @@ TEST(ReportKeys, EveryDocumentedKeyIsInTheReports) {
   // A budgeted render: the settings of its budgets; its grid chosen by the model: grid_choice.
   const nlohmann::json budgeted =
       report_of({"render", scene, "--spp", "16", "--width", "16", "--height", "16", "--time-budget", "1h",
-                 "--target-relmse", "0.5", "--adaptive", "--grid-res", "model", "--out", (tmp / "b.exr").string()});
+                 "--target-relmse", "0.5", "--adaptive", "--accel", "auto", "--grid-res", "model", "--out",
+                 (tmp / "b.exr").string()});
   ASSERT_TRUE(budgeted.at("grid_choice").is_object());
+  ASSERT_TRUE(budgeted.at("accel_choice").contains("reason"));
+  // --accel auto with nothing counted per cell: a pilot and both predictions.
+  const nlohmann::json chosen = report_of({"render", scene, "--spp", "2", "--width", "16", "--height", "16", "--stats",
+                                           "off", "--accel", "auto", "--out", (tmp / "c.exr").string()});
+  ASSERT_TRUE(chosen.at("accel_choice").contains("pilot"));
   const nlohmann::json lines = report_of({"cast", scene, "--rays", "lines", "--n", "2000"});
   const nlohmann::json segments = report_of({"cast", scene, "--rays", "segments", "--n", "2000"});
   // Per-thread counters of 2 threads over 64^3 cells do not fit: one shared sampled set.
@@ -115,7 +121,7 @@ TEST(ReportKeys, EveryDocumentedKeyIsInTheReports) {
                                             "--threads", "2", "--grid-max-bytes", "9000000"});
   ASSERT_TRUE(sampled.contains("stats_note"));
   std::set<std::string> seen;
-  for (const auto* j : {&render, &budgeted, &lines, &segments, &sampled}) collect(*j, seen);
+  for (const auto* j : {&render, &budgeted, &chosen, &lines, &segments, &sampled}) collect(*j, seen);
   for (const auto& key : documented.all) EXPECT_TRUE(seen.count(key)) << key << " is documented but in no report";
   // Top-level keys: in a render's report and in a cast's (render is null in a
   // cast, cast absent from a render, stats_note only when there is a note).
