@@ -45,6 +45,14 @@ TEST(ZeroedArray, StartsZeroAndAMovedFromArrayIsEmpty) {
   EXPECT_EQ(moved.size(), std::size_t(1) << 20);
   EXPECT_EQ(moved[7], 5u);
   EXPECT_TRUE(a.empty());  // NOLINT(bugprone-use-after-move): the moved-from state is what is tested
+  // Under 2 MiB from calloc, from 2 MiB on mapped for huge pages: both start zero and copy alike.
+  for (const std::size_t n : {std::size_t(1000), (std::size_t(2) << 20) / 8 - 1, (std::size_t(2) << 20) / 8 + 1}) {
+    ZeroedArray<std::uint64_t> b(n);
+    EXPECT_EQ(b[0], 0u);
+    EXPECT_EQ(b[n - 1], 0u);
+    b[n - 1] = 9;
+    EXPECT_EQ(ZeroedArray<std::uint64_t>(b)[n - 1], 9u) << n;
+  }
 }
 
 }  // namespace
