@@ -3,25 +3,15 @@
 // the same whichever exact accelerator ran.
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <nlohmann/json.hpp>
 
+#include "renderer/commands/exr_pixels.h"
 #include "test_util.h"
 
 namespace kappa {
 namespace {
 
 using test::run_kappa;
-
-std::vector<float> pixels(const std::filesystem::path& exr) {
-  auto in = OIIO::ImageInput::open(exr.string());
-  EXPECT_TRUE(in) << OIIO::geterror();
-  if (!in) return {};
-  std::vector<float> v(std::size_t(in->spec().width * in->spec().height * 3));
-  in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, v.data());
-  return v;
-}
 
 /// The camera inside a tetrahedron: 4 triangles, every ray hits one, and a
 /// naive query's 4 tests cost less than a grid's walk to its hit (measured:
@@ -68,7 +58,7 @@ TEST(AccelChoice, OnFourTrianglesWithStatisticsOffAutoRunsNaiveAndTheImageIsTheG
   args.insert(args.end(), {"--accel", "grid"});
   const auto g = render_report(args, tmp, "grid");
   EXPECT_TRUE(g.at("accel_choice").is_null());
-  EXPECT_TRUE(test::bitwise_equal(pixels(tmp / "auto.exr"), pixels(tmp / "grid.exr")));
+  EXPECT_TRUE(test::bitwise_equal(test::exr_rgb(tmp / "auto.exr"), test::exr_rgb(tmp / "grid.exr")));
 }
 
 TEST(AccelChoice, OnTheBunnyAutoRunsTheGridAtTheResolutionAsked) {

@@ -3,10 +3,9 @@
 // and its refusals.
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <nlohmann/json.hpp>
 
+#include "renderer/commands/exr_pixels.h"
 #include "test_util.h"
 
 namespace kappa {
@@ -15,15 +14,6 @@ namespace {
 using test::run_kappa;
 
 std::string cornell() { return (test::assets_dir() / "cornell-box" / "scene.json").string(); }
-
-std::vector<float> pixels(const std::filesystem::path& exr) {
-  auto in = OIIO::ImageInput::open(exr.string());
-  EXPECT_TRUE(in) << OIIO::geterror();
-  if (!in) return {};
-  std::vector<float> v(std::size_t(in->spec().width * in->spec().height * 3));
-  in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, v.data());
-  return v;
-}
 
 TEST(GridChoice, TheReportGivesTheChoiceAndTheImageIsTheGridsAtAnyResolution) {
   test::TempDir tmp;
@@ -69,7 +59,7 @@ TEST(GridChoice, TheReportGivesTheChoiceAndTheImageIsTheGridsAtAnyResolution) {
   args = frame;
   args.insert(args.end(), {"--out", (tmp / "a.exr").string(), "--report", (tmp / "a.json").string()});
   ASSERT_EQ(run_kappa(args).exit_code, 0);
-  EXPECT_TRUE(test::bitwise_equal(pixels(tmp / "m.exr"), pixels(tmp / "a.exr")));
+  EXPECT_TRUE(test::bitwise_equal(test::exr_rgb(tmp / "m.exr"), test::exr_rgb(tmp / "a.exr")));
   EXPECT_TRUE(nlohmann::json::parse(test::read_file(tmp / "a.json")).at("grid_choice").is_null());
 }
 
