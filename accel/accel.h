@@ -19,7 +19,7 @@ namespace kappa {
 class CellLayout;
 
 /// Every accelerator Kappa has: what visit_accelerator (dispatch.h) switches on.
-enum class AccelKind { naive, grid, embree };
+enum class AccelKind { naive, grid, grid2, embree };
 
 class Accelerator {
  public:

@@ -31,6 +31,15 @@ class CellLayout {
   /// The size every cell has when all have one (a uniform grid): what the
   /// model's eqs 19, 21, 22 and 24 take; nullopt when cells differ.
   virtual std::optional<Vec3d> uniform_cell_size() const = 0;
+  /// Per level, its cells and their total occupancy, for a structure of
+  /// more than one level (grid2); empty for one level, whose sizes are
+  /// cell_count() and the sum of occupancies().
+  struct Level {
+    int level = 0;
+    std::uint64_t N_c = 0;
+    std::uint64_t theta_tot = 0;
+  };
+  virtual std::vector<Level> levels() const { return {}; }
   /// A short description of the structure ("64x32x16"), for metadata and summaries.
   virtual std::string resolution_text() const = 0;
 };

@@ -11,7 +11,9 @@
 
 #include "accel.h"
 #include "grid.h"
-#include "grid_traverse.h"  // the walk's templates, for code that instantiates it with a recorder
+#include "grid2.h"
+#include "grid2_traverse.h"
+#include "grid_traverse.h"  // the walks' templates, for code that instantiates them with a recorder
 #include "recorder.h"
 
 namespace kappa {
@@ -27,13 +29,15 @@ concept CellWalker = requires(const A& a, const Ray& r, NoRecorder& rec) {
 };
 
 /// Calls f with `accel` as its concrete type where one is instantiated (the
-/// grid), else as `const Accelerator&`; returns what f returns.
+/// grids), else as `const Accelerator&`; returns what f returns.
 template <class F>
 decltype(auto) visit_accelerator(const Accelerator& accel, F&& f) {
   switch (accel.kind()) {
     case AccelKind::grid:
       // kind() is grid only for a UniformGrid: the cast is checked by construction.
       return std::forward<F>(f)(static_cast<const UniformGrid&>(accel));
+    case AccelKind::grid2:
+      return std::forward<F>(f)(static_cast<const TwoLevelGrid&>(accel));
     case AccelKind::naive:
     case AccelKind::embree:
       break;

@@ -4,6 +4,7 @@
 
 #include "embree.h"
 #include "grid.h"
+#include "grid2.h"
 #include "input_error.h"
 #include "naive.h"
 
@@ -22,13 +23,22 @@ GridOptions grid_options(const AccelOptions& options) {
   return grid;
 }
 
-std::vector<std::string> accelerator_names() { return {"embree", "grid", "naive"}; }
+Grid2Options grid2_options(const AccelOptions& options) {
+  Grid2Options grid2;
+  if (options.grid2_top_density > 0) grid2.top_density = options.grid2_top_density;
+  if (options.grid2_leaf_density > 0) grid2.leaf_density = options.grid2_leaf_density;
+  grid2.max_bytes = options.max_bytes();
+  return grid2;
+}
+
+std::vector<std::string> accelerator_names() { return {"embree", "grid", "grid2", "naive"}; }
 
 std::unique_ptr<Accelerator> make_accelerator(std::string_view name, std::span<const Triangle> triangles,
                                               const AccelOptions& options, TaskProgress* progress) {
   if (name == "naive") return std::make_unique<NaiveAccelerator>(triangles);
   if (name == "embree") return std::make_unique<EmbreeAccelerator>(triangles, progress);
   if (name == "grid") return std::make_unique<UniformGrid>(triangles, grid_options(options), progress);
+  if (name == "grid2") return std::make_unique<TwoLevelGrid>(triangles, grid2_options(options), progress);
   throw InputError("unknown accelerator '" + std::string(name) + "'");
 }
 

@@ -12,6 +12,7 @@
 
 #include "accel.h"
 #include "grid.h"
+#include "grid2.h"
 #include "task_progress.h"
 
 namespace kappa {
@@ -22,6 +23,8 @@ struct AccelOptions {
   std::string grid_res = "auto";  ///< "auto", "N" or "NxNxN"; "model" in kappa render (renderer/render/grid_choice.h)
   double grid_density = 0;        ///< lambda in N_c = lambda * N for "auto"; 0 = the grid's default
   std::uint64_t grid_max_bytes = 0;  ///< refuse grids larger than this; 0 = the default (a quarter of RAM)
+  double grid2_top_density = 0;   ///< grid2's top cells per triangle; 0 = its default
+  double grid2_leaf_density = 0;  ///< grid2's leaves per triangle of a top cell; 0 = its default
 
   /// grid_max_bytes, or the default when it is 0: the budget of the grid and
   /// of any per-cell counters kept beside it.
@@ -31,6 +34,9 @@ struct AccelOptions {
 /// The grid's options from the build settings, for code that builds a grid
 /// directly (calibration).
 GridOptions grid_options(const AccelOptions& options);
+
+/// grid2's options from the build settings.
+Grid2Options grid2_options(const AccelOptions& options);
 
 /// The names make_accelerator accepts, for help texts and validation.
 std::vector<std::string> accelerator_names();

@@ -36,6 +36,9 @@ struct WalkCounts {
   std::uint64_t refs = 0;   ///< sum of Theta_i over them (before mailboxing)
   std::uint64_t tests = 0;  ///< triangle tests made
   std::uint64_t skips = 0;  ///< tests the mailbox avoided
+  /// Of the cells, those of a two-level structure's top level (grid2's empty
+  /// top cells, which hold no triangles); 0 for a structure of one level.
+  std::uint64_t top_cells = 0;
 };
 
 /// The part of the ray a walk covered, for the model's prediction of the

@@ -1,5 +1,7 @@
 #include "cast.h"
 
+#include <cmath>
+
 namespace kappa {
 
 CastMeasurement finish_cast(const CellLayout& cells, CellCounters counters, const PerCellPlan& plan, double seconds) {
@@ -20,7 +22,8 @@ CastMeasurement finish_cast(const CellLayout& cells, CellCounters counters, cons
   }
   // Predicted cells per ray from each ray's own segment inside the box,
   // summed by the recorders (eq 24, predicted_cells_eq24).
-  m.cells_per_ray_predicted = t.rays == 0 ? 0.0 : t.predicted_cells() / double(t.rays);
+  // Eq 24 needs one cell size: undefined (null) over cells of differing sizes (grid2's leaves).
+  m.cells_per_ray_predicted = !cells.uniform_cell_size() ? NAN : t.rays == 0 ? 0.0 : t.predicted_cells() / double(t.rays);
   return m;
 }
 

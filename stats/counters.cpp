@@ -10,6 +10,7 @@ ClassTotals& ClassTotals::operator+=(const ClassTotals& o) {
   mailbox_skips += o.mailbox_skips;
   refs += o.refs;
   hits += o.hits;
+  top_cells += o.top_cells;
   predicted_fixed += o.predicted_fixed;
   return *this;
 }

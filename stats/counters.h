@@ -26,6 +26,7 @@ struct ClassTotals {
   std::uint64_t mailbox_skips = 0;  ///< tests avoided by the mailbox
   std::uint64_t refs = 0;           ///< sum of Theta_i over visited cells (before mailboxing)
   std::uint64_t hits = 0;           ///< rays that hit something
+  std::uint64_t top_cells = 0;      ///< of the cells, grid2's (empty) top cells (WalkCounts::top_cells)
   /// Sum over rays of the model's predicted cells (WalkCounts) in 1/1024
   /// units: an integer, so totals do not depend on how threads split rays.
   std::uint64_t predicted_fixed = 0;
@@ -94,6 +95,7 @@ class CellCounters {
       t.refs += w.refs;
       t.tests += w.tests;
       t.mailbox_skips += w.skips;
+      t.top_cells += w.top_cells;
       const double predicted = predicted_cells_eq24(segment, m_owner.m_inv_cell);
       t.predicted_fixed += std::uint64_t(predicted * 1024.0 + 0.5);  // >= 0: rounds to nearest
     }

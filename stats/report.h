@@ -3,17 +3,20 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+
+#include "accel/cell_layout.h"
 #include <optional>
 #include <span>
 #include <string>
 
 #include "accel/accel.h"
+#include "accel/cell_layout.h"
 #include "cast.h"
 
 namespace kappa {
 
 /// Bumped once by each change of the report's keys (changelog: stats/README.md).
-inline constexpr int kReportSchemaVersion = 8;
+inline constexpr int kReportSchemaVersion = 9;
 
 /// A double, or null when it is undefined or not finite (never NaN in JSON).
 nlohmann::ordered_json number_or_null(std::optional<double> v);
@@ -39,5 +42,13 @@ struct ClassSummary {
 nlohmann::ordered_json ray_class_section(const ClassSummary& m, std::optional<double> p_tot_predicted);
 /// The same from a cast with counters.
 nlohmann::ordered_json ray_class_section(const CastMeasurement& m, std::optional<double> p_tot_predicted);
+
+/// A ray class's figures per level of a structure of two levels (grid2,
+/// CellLayout::levels): [{level, cells_per_ray, tests_per_ray, p_tot,
+/// kappa}]. Exact from the totals: level 0's cells hold no triangles, so
+/// every test and reference is level 1's, and eq 8 restricted to level 1 is
+/// N_c1 * refs / (cells_1 * theta_tot1); level 0's kappa is null (its
+/// theta_tot is 0). Null for a structure of one level.
+nlohmann::ordered_json level_sections(const ClassTotals& totals, const std::vector<CellLayout::Level>& levels);
 
 }  // namespace kappa

@@ -63,7 +63,7 @@ struct CastOptions {
 
 struct BenchOptions {
   std::string scene;
-  std::vector<std::string> accels = {"naive", "grid", "embree"};
+  std::vector<std::string> accels = {"naive", "grid", "grid2", "embree"};
   std::vector<std::string> rays = {"camera", "bounce", "shadow", "lines"};
   std::vector<int> threads = {1, 2};
   int repeat = 3;

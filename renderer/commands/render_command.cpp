@@ -128,18 +128,18 @@ int run_render(const RenderOptions& options) {
   aov.variance = aov.variance || budget.target_relmse > 0;  // the estimate's inputs, per pixel
   aov.spp = aov.spp || budget.adaptive;
   // auto counts as the grid here: a render that counts cells runs a cell-based accelerator.
-  const bool cell_based = options.accel == "grid" || options.accel == "auto";
+  const bool cell_based = options.accel == "grid" || options.accel == "grid2" || options.accel == "auto";
   if (!options.cell_map.empty() && (options.stats != "on" || !cell_based))
-    throw InputError("--cell-map: needs --accel grid and --stats on");
+    throw InputError("--cell-map: needs --accel grid or grid2 and --stats on");
   if (const auto ext = std::filesystem::path(options.cell_map).extension(); !options.cell_map.empty() && ext != ".exr" &&
                                                                             ext != ".png")
     throw InputError("--cell-map: '" + options.cell_map + "' must end in .exr or .png");
   RenderSettings settings = render_settings_of(options, aov);  // a bad setting is refused before loading
   const bool grid_by_model = options.build.grid_res == "model";
-  if (grid_by_model && !cell_based)
+  if (grid_by_model && options.accel != "grid" && options.accel != "auto")
     throw InputError("--grid-res model: needs --accel grid or auto (it chooses the grid's resolution)");
   if (aov.cost && (options.stats != "on" || !cell_based))
-    throw InputError("--aov cost: needs --accel grid and --stats on (it counts the grid's cells and tests)");
+    throw InputError("--aov cost: needs --accel grid or grid2 and --stats on (it counts the cells and tests)");
   if (!options.out.empty() && std::filesystem::path(options.out).extension() != ".exr")
     throw InputError("--out: '" + options.out + "' must end in .exr");
 

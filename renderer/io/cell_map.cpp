@@ -44,12 +44,16 @@ void write_cell_map(AtomicOutput& out, const CellLayout& cells, const RenderCoun
     const long long u1 = std::clamp<long long>(pixel_of(b.hi[u_axis], bounds.lo[u_axis], pixel_u), u0 + 1, w);
     const long long v0 = std::clamp<long long>(pixel_of(b.lo[v_axis], bounds.lo[v_axis], pixel_v), 0, h - 1);
     const long long v1 = std::clamp<long long>(pixel_of(b.hi[v_axis], bounds.lo[v_axis], pixel_v), v0 + 1, h);
+    // A cell larger than a pixel (grid2's empty top cells) spreads its
+    // values evenly over the pixels its box covers, so that the image's
+    // sums stay p_tot and Theta_tot.
+    const double share = 1.0 / double((u1 - u0) * (v1 - v0));
     for (long long v = v0; v < v1; ++v) {
       for (long long u = u0; u < u1; ++u) {
         // Image rows run top-down: the v axis points up in the picture.
         const std::size_t px = std::size_t(h - 1 - v) * std::size_t(w) + std::size_t(u);
-        p[px] += rays > 0 ? double(visits) / double(rays) : 0.0;
-        theta[px] += double(theta_i[i]);
+        p[px] += (rays > 0 ? double(visits) / double(rays) : 0.0) * share;
+        theta[px] += double(theta_i[i]) * share;
       }
     }
   }

@@ -7,22 +7,28 @@
 
 #include "accel/accel.h"
 #include "accel/grid.h"
+#include "accel/grid2.h"
 #include "renderer/render/film.h"
 #include "renderer/render/frame.h"
 #include "renderer/scene/scene.h"
 
 namespace kappa {
 
-/// Statistics off: queries straight to the grid (render_plain_grid.cpp) or
+/// Statistics off: queries straight to a grid (render_plain_grid.cpp,
+/// render_plain_grid2.cpp) or
 /// through the interface (render_plain.cpp).
 RenderResult render_plain(const Scene& scene, const UniformGrid& grid, const RenderSettings& settings, Film& film,
+                          const ProgressCallback& progress);
+RenderResult render_plain(const Scene& scene, const TwoLevelGrid& grid, const RenderSettings& settings, Film& film,
                           const ProgressCallback& progress);
 RenderResult render_plain(const Scene& scene, const Accelerator& accel, const RenderSettings& settings, Film& film,
                           const ProgressCallback& progress);
 
-/// Statistics on with the grid: its walk with per-class counters, per cell
+/// Statistics on with a grid: its walk with per-class counters, per cell
 /// and in total (render_counting.cpp).
 RenderResult render_counting(const Scene& scene, const UniformGrid& grid, const RenderSettings& settings, Film& film,
+                             const ProgressCallback& progress);
+RenderResult render_counting(const Scene& scene, const TwoLevelGrid& grid, const RenderSettings& settings, Film& film,
                              const ProgressCallback& progress);
 
 /// Statistics on with another accelerator: per class only the rays, their

@@ -1,10 +1,11 @@
-// The grid's frame with statistics on: its walk instantiated with per-class
+// The grids' frames with statistics on: their walks instantiated with per-class
 // counters, per cell (every path into per-thread arrays, or sampled paths
 // into one shared set) and in total, within --grid-max-bytes (plan_per_cell).
 #include <tbb/enumerable_thread_specific.h>
 
 #include <memory>
 
+#include "accel/grid2_traverse.h"
 #include "accel/grid_traverse.h"
 #include "accel/thread_limit.h"
 #include "renderer/render/frames.h"
@@ -15,8 +16,11 @@
 
 namespace kappa {
 
-RenderResult render_counting(const Scene& scene, const UniformGrid& grid, const RenderSettings& settings, Film& film,
-                             const ProgressCallback& progress) {
+namespace {
+
+template <class Walker>
+RenderResult render_counting_with(const Scene& scene, const Walker& grid, const RenderSettings& settings, Film& film,
+                                  const ProgressCallback& progress) {
   QueryClock::get();  // its one-time set-up (about 25 ms) stays out of the frame's time
   const CellLayout& cells = *grid.cells();
   const std::uint64_t n = cells.cell_count();
@@ -32,11 +36,11 @@ RenderResult render_counting(const Scene& scene, const UniformGrid& grid, const 
   RenderResult result;
   if (shared[0])
     result = render_tiles(scene, settings, film, progress, [&] {
-      return CountingQueries<UniformGrid, PerCell::shared>(grid, per_thread.local(), sampling);
+      return CountingQueries<Walker, PerCell::shared>(grid, per_thread.local(), sampling);
     });
   else
     result = render_tiles(scene, settings, film, progress, [&] {
-      return CountingQueries<UniformGrid, PerCell::own>(grid, per_thread.local(), sampling);
+      return CountingQueries<Walker, PerCell::own>(grid, per_thread.local(), sampling);
     });
   // Merge into one thread's counters: no further copy of the arrays (and
   // none at all of shared ones).
@@ -50,6 +54,18 @@ RenderResult render_counting(const Scene& scene, const UniformGrid& grid, const 
   result.cell_sample = plan.every;
   result.stats_note = plan.note;
   return result;
+}
+
+}  // namespace
+
+RenderResult render_counting(const Scene& scene, const UniformGrid& grid, const RenderSettings& settings, Film& film,
+                             const ProgressCallback& progress) {
+  return render_counting_with(scene, grid, settings, film, progress);
+}
+
+RenderResult render_counting(const Scene& scene, const TwoLevelGrid& grid, const RenderSettings& settings, Film& film,
+                             const ProgressCallback& progress) {
+  return render_counting_with(scene, grid, settings, film, progress);
 }
 
 }  // namespace kappa

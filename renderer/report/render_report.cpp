@@ -13,7 +13,7 @@ namespace {
 /// One class's summary: p_i from the per-cell counts (of the sampled paths,
 /// if per-cell counting was sampled), exact totals otherwise.
 ClassSummary summary(const ClassTotals& totals, std::uint64_t per_cell_rays, std::span<const std::uint64_t> visits,
-                     const std::vector<std::uint32_t>& theta, double seconds) {
+                     const std::vector<std::uint32_t>& theta, double seconds, bool uniform_cells) {
   ClassSummary m;
   m.totals = totals;
   m.per_cell_rays = per_cell_rays;
@@ -22,7 +22,8 @@ ClassSummary summary(const ClassTotals& totals, std::uint64_t per_cell_rays, std
   // totals give; what needs p_i is undefined.
   m.collusion = collusion_sampled(visits, theta, visits.empty() ? 0 : per_cell_rays, rays, totals.cells, totals.refs);
   if (!visits.empty()) m.sample = collusion(visits, theta, per_cell_rays);
-  m.cells_per_ray_predicted = rays > 0 ? totals.predicted_cells() / double(rays) : 0.0;
+  // Eq 24 needs one cell size: undefined (null) over cells of differing sizes (grid2's leaves).
+  m.cells_per_ray_predicted = !uniform_cells ? NAN : rays > 0 ? totals.predicted_cells() / double(rays) : 0.0;
   m.time_s = seconds;
   return m;
 }
@@ -62,6 +63,7 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
   if (cells && result.counters) {
     const RenderCounters& rc = *result.counters;
     const std::vector<std::uint32_t> theta = cells->occupancies();
+    const bool uniform = cells->uniform_cell_size().has_value();
     const bool per_cell = rc.classes[0].per_cell();
     std::vector<std::uint64_t> visits, all_visits(per_cell ? theta.size() : 0, 0);
     ClassTotals all;
@@ -74,14 +76,17 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
         for (std::size_t i = 0; i < visits.size(); ++i) all_visits[i] += visits[i];
       }
       rays[kRenderClassNames[k]] = ray_class_section(
-          summary(c.totals, c.per_cell_queries(), visits, theta, clock.seconds(rc.ticks[k])),
+          summary(c.totals, c.per_cell_queries(), visits, theta, clock.seconds(rc.ticks[k]), uniform),
           std::nullopt);
+      if (const auto levels = cells->levels(); !levels.empty())
+        rays[kRenderClassNames[k]]["levels"] = level_sections(c.totals, levels);
       all += c.totals;
       all_per_cell_rays += c.per_cell_queries();
       all_seconds += clock.seconds(rc.ticks[k]);
     }
-    rays["all"] = ray_class_section(summary(all, all_per_cell_rays, all_visits, theta, all_seconds),
+    rays["all"] = ray_class_section(summary(all, all_per_cell_rays, all_visits, theta, all_seconds, uniform),
                                     std::nullopt);
+    if (const auto levels = cells->levels(); !levels.empty()) rays["all"]["levels"] = level_sections(all, levels);
     add_stats_block(j, per_cell, result.cell_sample, result.stats_note);
   } else if (result.counters) {
     // Another accelerator: per class what applies to any.

@@ -17,7 +17,8 @@ namespace kappa {
 /// Preceded by eq 10's line when report["cost"] holds a prediction.
 std::string stats_table(const nlohmann::ordered_json& report);
 
-/// The grid's occupancy from report["grid"], measured beside eqs 19 and 21:
+/// The grid's occupancy from report["grid"], measured beside eqs 19 and 21
+/// (grid2's from report["grid2"], its top grid and leaves):
 /// the line `kappa cast` prints above its table.
 std::string grid_occupancy_line(const nlohmann::ordered_json& grid);
 

@@ -1,5 +1,7 @@
-// The uniform grid returns bitwise the same closest hit (triangle id, t,
-// barycentrics) and the same occlusion answer as naive, at every extreme.
+// The uniform grid's own cases: fixed resolutions at their extremes, its
+// lists and occupancy against their definitions, its bounds and refusals.
+// Its agreement with naive at default settings is the suite over every exact
+// accelerator (exact_agreement_test.cpp).
 #include "accel/grid.h"
 
 #include <gtest/gtest.h>
@@ -9,6 +11,7 @@
 #include <random>
 
 #include "accel/naive.h"
+#include "agreement.h"
 #include "accel/triangle_box.h"
 #include "renderer/scene/obj_loader.h"
 #include "accel/input_error.h"
@@ -17,34 +20,8 @@
 namespace kappa {
 namespace {
 
-using Rays = std::vector<Ray>;
-
-/// Compares every ray; reports the first few disagreements in full.
-void expect_agreement(std::span<const Triangle> tris, const UniformGrid& grid, const Rays& rays) {
-  const NaiveAccelerator naive(tris);
-  std::size_t mismatches = 0, hits = 0;
-  for (const Ray& r : rays) {
-    const auto a = naive.closest_hit(r);
-    const auto b = grid.closest_hit(r);
-    const bool occluded_a = naive.any_hit(r), occluded_b = grid.any_hit(r);
-    hits += a.has_value();
-    const bool same = a.has_value() == b.has_value() && occluded_a == occluded_b &&
-                      (!a || (a->triangle == b->triangle && std::bit_cast<std::uint32_t>(a->t) ==
-                                                                  std::bit_cast<std::uint32_t>(b->t) &&
-                              std::bit_cast<std::uint32_t>(a->b0) == std::bit_cast<std::uint32_t>(b->b0) &&
-                              std::bit_cast<std::uint32_t>(a->b1) == std::bit_cast<std::uint32_t>(b->b1) &&
-                              std::bit_cast<std::uint32_t>(a->b2) == std::bit_cast<std::uint32_t>(b->b2)));
-    if (!same && ++mismatches <= 3) {
-      ADD_FAILURE() << "ray o=(" << r.o.x << "," << r.o.y << "," << r.o.z << ") d=(" << r.d.x << "," << r.d.y << ","
-                    << r.d.z << ") tmin=" << r.tmin << " tmax=" << r.tmax << ": naive "
-                    << (a ? std::to_string(a->triangle) + " t=" + std::to_string(a->t) : std::string("miss"))
-                    << " any=" << occluded_a << ", grid "
-                    << (b ? std::to_string(b->triangle) + " t=" + std::to_string(b->t) : std::string("miss"))
-                    << " any=" << occluded_b << " (grid " << grid.info().resolution.to_string() << ")";
-    }
-  }
-  EXPECT_EQ(mismatches, 0u) << "of " << rays.size() << " rays (" << hits << " hits)";
-}
+using test::expect_agreement;
+using test::Rays;
 
 UniformGrid make_grid(std::span<const Triangle> tris, std::optional<GridResolution> res = std::nullopt) {
   GridOptions options;
@@ -52,108 +29,24 @@ UniformGrid make_grid(std::span<const Triangle> tris, std::optional<GridResoluti
   return UniformGrid(tris, options);
 }
 
-Vec3f lerp(const Vec3d& a, const Vec3d& b, double t) { return Vec3f(a + (b - a) * t); }
-
-/// The ray families the grid must get right, built from the grid's own planes.
+/// agreement.h's ray families, from the grid's own cell planes.
 Rays ray_families(const UniformGrid& grid, std::size_t per_family, std::uint32_t seed) {
-  const GridInfo& g = grid.info();
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0), wide(-0.5, 1.5);
-  const Vec3d lo = g.lo, hi = g.hi;
-  auto inside = [&] { return lerp(lo, hi, 0.0) + Vec3f(Vec3d{u(rng), u(rng), u(rng)} * (hi - lo)); };
-  auto around = [&] { return Vec3f(lo + Vec3d{wide(rng), wide(rng), wide(rng)} * (hi - lo)); };
-  auto direction = [&] {
-    std::normal_distribution<float> n;
-    return Vec3f{n(rng), n(rng), n(rng)};
-  };
-  auto plane = [&](int axis) {  // a random cell plane, including the box faces
-    std::uniform_int_distribution<int> i(0, g.resolution[axis]);
-    return float(g.lo[axis] + i(rng) * g.cell_size[axis]);
-  };
-  auto grid_vertex = [&] { return Vec3f{plane(0), plane(1), plane(2)}; };
-  const Vec3f axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-
-  Rays rays;
-  for (std::size_t i = 0; i < per_family; ++i) {
-    // Random rays from inside and from around the box.
-    rays.push_back({inside(), direction()});
-    rays.push_back({around(), direction()});
-    // Axis-parallel rays, with +0 and -0 in the other components.
-    Vec3f d = axes[i % 6];
-    if (i % 12 >= 6) d = Vec3f{d.x == 0 ? -0.0f : d.x, d.y == 0 ? -0.0f : d.y, d.z == 0 ? -0.0f : d.z};
-    rays.push_back({around(), d});
-    // Rays lying in a cell plane: one coordinate on the plane, no motion across it.
-    {
-      const int axis = int(i % 3);
-      Vec3f o = around();
-      Vec3f dir = direction();
-      (axis == 0 ? o.x : axis == 1 ? o.y : o.z) = plane(axis);
-      (axis == 0 ? dir.x : axis == 1 ? dir.y : dir.z) = 0.0f;
-      rays.push_back({o, dir});
-      // ... and along a grid edge (two coordinates on planes).
-      Vec3f e = around();
-      const int a1 = (axis + 1) % 3;
-      (axis == 0 ? e.x : axis == 1 ? e.y : e.z) = plane(axis);
-      (a1 == 0 ? e.x : a1 == 1 ? e.y : e.z) = plane(a1);
-      rays.push_back({e, axes[2 * ((axis + 2) % 3)] * (i % 2 ? 1.0f : -1.0f)});
-    }
-    // Through grid vertices, from inside and outside.
-    {
-      const Vec3f o = i % 2 ? inside() : around();
-      const Vec3f target = grid_vertex();
-      if (!(target == o)) rays.push_back({o, target - o});
-    }
-    // Starting exactly on a box face.
-    {
-      Vec3f o = inside();
-      const int axis = int(i % 3);
-      (axis == 0 ? o.x : axis == 1 ? o.y : o.z) = float(i % 2 ? g.lo[axis] : g.hi[axis]);
-      rays.push_back({o, direction()});
-    }
-    // A finite tmax that ends inside the grid, and a tmin > 0.
-    {
-      Ray r{around(), direction()};
-      r.tmax = float(u(rng) * length(hi - lo));
-      rays.push_back(r);
-      Ray s{inside(), direction()};
-      s.tmin = float(u(rng) * 0.3 * length(hi - lo));
-      rays.push_back(s);
-    }
-  }
-  return rays;
-}
-
-std::size_t rays_for(std::size_t triangles) { return std::clamp<std::size_t>(3000000 / (triangles + 100) / 10, 20, 3000); }
-
-TEST(Grid, RandomSoupsFromOneToAHundredThousandTriangles) {
-  for (std::size_t n : {1, 2, 10, 100, 1000, 10000, 100000}) {
-    SCOPED_TRACE(std::to_string(n) + " triangles");
-    const auto tris = test::random_soup(n, std::uint32_t(n), n < 100 ? 0.5f : 0.1f);
-    const UniformGrid grid = make_grid(tris);
-    expect_agreement(tris, grid, ray_families(grid, rays_for(n), 11));
-  }
+  return test::ray_families({}, grid, per_family, seed);
 }
 
 TEST(Grid, LowResolutionBunny) {
   const auto tris = test::load_mesh(test::assets_dir() / "bunny-lowres" / "bunny_lowres.obj");
   ASSERT_EQ(tris.size(), 3674u);
-  for (auto res : {std::optional<GridResolution>{}, std::optional<GridResolution>{{1, 1, 1}},
-                   std::optional<GridResolution>{{1, 1, 512}}, std::optional<GridResolution>{{37, 5, 64}}}) {
+  // Fixed resolutions; the auto one is in the suite over every exact accelerator.
+  for (auto res : {std::optional<GridResolution>{{1, 1, 1}}, std::optional<GridResolution>{{1, 1, 512}},
+                   std::optional<GridResolution>{{37, 5, 64}}}) {
     const UniformGrid grid = make_grid(tris, res);
     SCOPED_TRACE(grid.info().resolution.to_string());
     expect_agreement(tris, grid, ray_families(grid, 150, 12));
   }
 }
 
-TEST(Grid, FullBunnyFromSharedScenes) {
-  const auto shared = test::shared_scenes_dir();
-  if (shared.empty()) GTEST_SKIP() << "../shared/scenes not present (a user's clone): skipping the 69k-triangle bunny";
-  const auto tris = test::load_mesh(shared / "bunny" / "bunny.obj");
-  const UniformGrid grid = make_grid(tris);
-  expect_agreement(tris, grid, ray_families(grid, 8, 13));
-}
-
-TEST(Grid, OneTriangleAndFlatScenes) {
+TEST(Grid, OneTriangleAndFlatScenesOnAFixedGrid) {
   const std::vector<Triangle> one = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}};  // flat in z
   const std::vector<Triangle> quad = {{{-1, 0, -1}, {1, 0, -1}, {1, 0, 1}}, {{-1, 0, -1}, {1, 0, 1}, {-1, 0, 1}}};
   std::vector<Triangle> line;  // zero extent in y and z: triangles standing on the x axis
@@ -161,24 +54,11 @@ TEST(Grid, OneTriangleAndFlatScenes) {
   // Degenerate triangles are left out of the grid; add real ones on the same line for something to hit.
   for (int i = 0; i < 50; ++i) line.push_back({{float(i), 0, 0}, {float(i) + 1, 0, 0}, {float(i) + 0.5f, 1e-3f, 0}});
   for (const std::vector<Triangle>* tris : {&one, &quad, static_cast<const std::vector<Triangle>*>(&line)}) {
-    for (auto res : {std::optional<GridResolution>{}, std::optional<GridResolution>{{8, 8, 8}}}) {
+    for (auto res : {std::optional<GridResolution>{{8, 8, 8}}}) {  // auto: exact_agreement_test.cpp
       const UniformGrid grid = make_grid(*tris, res);
       SCOPED_TRACE(std::to_string(tris->size()) + " triangles, grid " + grid.info().resolution.to_string());
       expect_agreement(*tris, grid, ray_families(grid, 300, 14));
     }
-  }
-}
-
-TEST(Grid, ScalesAndTranslations) {
-  const auto base = test::random_soup(500, 15, 0.2f);
-  for (const auto& [scale, shift] : std::vector<std::pair<float, Vec3f>>{
-           {1e-6f, {0, 0, 0}}, {1e-3f, {0, 0, 0}}, {1e3f, {0, 0, 0}}, {1e6f, {0, 0, 0}}, {1.0f, {1e6f, -1e6f, 1e6f}},
-           {10.0f, {1e6f, 0, 0}}}) {
-    std::vector<Triangle> tris;
-    for (const Triangle& t : base) tris.push_back({t.v0 * scale + shift, t.v1 * scale + shift, t.v2 * scale + shift});
-    const UniformGrid grid = make_grid(tris);
-    SCOPED_TRACE("scale " + std::to_string(scale) + " shift " + std::to_string(shift.x));
-    expect_agreement(tris, grid, ray_families(grid, 200, 16));
   }
 }
 
@@ -305,34 +185,6 @@ TEST(Grid, MemoryLimitIsAClearError) {
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("--grid-max-bytes"), std::string::npos) << e.what();
-  }
-}
-
-TEST(Grid, EmptyAndAllDegenerateScenesMiss) {
-  const std::vector<Triangle> none;
-  const UniformGrid empty = make_grid(none);
-  EXPECT_FALSE(empty.closest_hit(Ray{{0, 0, 0}, {0, 0, 1}}));
-  const std::vector<Triangle> flat = {{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}};
-  const UniformGrid degenerate = make_grid(flat);
-  EXPECT_FALSE(degenerate.closest_hit(Ray{{0.5f, 1, 0}, {0, -1, 0}}));
-  EXPECT_FALSE(degenerate.any_hit(Ray{{0.5f, 1, 0}, {0, -1, 0}}));
-}
-
-TEST(Grid, NonFiniteRaysMissLikeNaive) {
-  // One large triangle that the finite ray does hit: each non-finite variant
-  // of it must miss, in the grid as in naive.
-  const std::vector<Triangle> tris = {{{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}}};
-  const UniformGrid grid = make_grid(tris);
-  const NaiveAccelerator naive(tris);
-  const Ray finite{{0, 0, -5}, {0, 0, 1}};
-  ASSERT_TRUE(grid.closest_hit(finite));
-  ASSERT_TRUE(naive.closest_hit(finite));
-  for (const Ray& r : {Ray{{NAN, 0, -5}, {0, 0, 1}}, Ray{{0, 0, -INFINITY}, {0, 0, 1}}, Ray{{0, 0, -5}, {0, 0, INFINITY}},
-                       Ray{{0, 0, -5}, {0, 0, 0}}, Ray{{0, 0, -5}, {0, 0, 1}, NAN}, Ray{{0, 0, -5}, {0, 0, 1}, 0, NAN}}) {
-    EXPECT_FALSE(grid.closest_hit(r));
-    EXPECT_FALSE(grid.any_hit(r));
-    EXPECT_FALSE(naive.closest_hit(r));
-    EXPECT_FALSE(naive.any_hit(r));
   }
 }
 

@@ -26,10 +26,12 @@ namespace fs = std::filesystem;
 using Graph = std::map<std::string, std::set<std::string>>;
 
 /// grid_traverse.h is the body of grid.h's member templates (the walk, for
-/// any recorder): part of the grid's component, not a layer above or below it.
+/// any recorder): part of the grid's component, not a layer above or below it;
+/// grid2_traverse.h likewise of grid2's.
 std::string component_of(const std::string& path) {
   const std::string c = fs::path(path).replace_extension().string();
-  return c == "accel/grid_traverse" ? "accel/grid" : c;
+  if (c == "accel/grid_traverse") return "accel/grid";
+  return c == "accel/grid2_traverse" ? "accel/grid2" : c;
 }
 
 /// Every #include "..." of every .h and .cpp under the given top folders, as

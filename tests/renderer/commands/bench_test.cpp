@@ -24,15 +24,16 @@ TEST(Bench, WritesEveryFigureForEveryAcceleratorClassAndThreadCount) {
   EXPECT_EQ(j.at("n"), 3000);
   EXPECT_EQ(j.at("repeat"), 2);
   EXPECT_NE(j.at("scene").get<std::string>().find("cornell-box"), std::string::npos);
-  for (const char* accel : {"naive", "grid", "embree"}) {
+  for (const char* accel : {"naive", "grid", "grid2", "embree"}) {  // the default list
     EXPECT_GT(j.at("accels").at(accel).at("build_s").get<double>(), 0.0) << accel;  // a measured time
     EXPECT_LT(j.at("accels").at(accel).at("build_s").get<double>(), 10.0) << accel;
     EXPECT_TRUE(j.at("accels").at(accel).contains("bytes")) << accel;
   }
   EXPECT_GT(j.at("accels").at("grid").at("bytes").get<double>(), 0.0);
+  EXPECT_GT(j.at("accels").at("grid2").at("bytes").get<double>(), 0.0);
   EXPECT_GT(j.at("accels").at("embree").at("bytes").get<double>(), 0.0);
-  // 3 accelerators x 4 ray classes x 2 thread counts.
-  ASSERT_EQ(j.at("results").size(), 24u);
+  // 4 accelerators x 4 ray classes x 2 thread counts.
+  ASSERT_EQ(j.at("results").size(), 32u);
   std::map<std::string, double> embree_median;  // by "rays threads"
   for (const auto& row : j.at("results"))
     if (row.at("accel") == "embree")

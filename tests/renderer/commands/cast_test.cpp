@@ -259,6 +259,60 @@ TEST(CostPictures, NeedStatisticsOnTheGrid) {
   }
 }
 
+/// grid2's figures per level add up to the class's: level 0 (empty top
+/// cells) has cells and no tests, level 1 every test; kappa of level 1 is eq
+/// 8 over its leaves; eq 24 is undefined over leaves of differing sizes.
+void expect_grid2_levels(const nlohmann::json& report, const nlohmann::json& c) {
+  const auto& levels = c.at("levels");
+  ASSERT_EQ(levels.size(), 2u) << c.dump();
+  const double cells = levels[0].at("cells_per_ray").get<double>() + levels[1].at("cells_per_ray").get<double>();
+  EXPECT_NEAR(cells, c.at("cells_per_ray").get<double>(), 1e-12 * cells);
+  EXPECT_EQ(levels[0].at("tests_per_ray").get<double>(), 0.0);
+  EXPECT_NEAR(levels[1].at("tests_per_ray").get<double>(), c.at("tests_per_ray").get<double>(), 1e-12);
+  EXPECT_TRUE(levels[0].at("kappa").is_null());
+  const auto& g = report.at("grid2");
+  const double N_c1 = g.at("levels")[1].at("N_c").get<double>(), theta1 = g.at("levels")[1].at("theta_tot").get<double>();
+  const double kappa1 = N_c1 * c.at("refs_per_ray").get<double>() / (levels[1].at("p_tot").get<double>() * theta1);
+  EXPECT_NEAR(levels[1].at("kappa").get<double>(), kappa1, 1e-9 * kappa1);
+  EXPECT_TRUE(c.at("cells_per_ray_predicted").is_null());
+}
+
+TEST(Grid2Statistics, RenderCountsLeavesPerLevelIntoTheReportTheAovsAndTheCellMap) {
+  test::TempDir tmp;
+  const auto r = test::run_kappa({"render", cornell(), "--accel", "grid2", "--spp", "2", "--width", "24", "--height",
+                                  "24", "--aov", "cost", "--out", (tmp / "x.exr").string(), "--report",
+                                  (tmp / "x.json").string(), "--cell-map", (tmp / "map.exr").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.std_err;
+  const auto j = nlohmann::json::parse(test::read_file(tmp / "x.json"));
+  EXPECT_EQ(j.at("accel"), "grid2");
+  EXPECT_FALSE(j.contains("grid"));
+  const auto& all = j.at("rays").at("all");
+  const double rays = all.at("count").get<double>();
+  EXPECT_NEAR(channel_sum(tmp / "x.exr", "cost.cells"), all.at("cells_per_ray").get<double>() * rays, 0.5);
+  EXPECT_NEAR(channel_sum(tmp / "x.exr", "cost.tests"), all.at("tests_per_ray").get<double>() * rays, 0.5);
+  // Leaves of two sizes projected at their own size keep the sums.
+  EXPECT_NEAR(channel_sum(tmp / "map.exr", "p"), all.at("p_tot").get<double>(), 1e-3 * all.at("p_tot").get<double>());
+  EXPECT_NEAR(channel_sum(tmp / "map.exr", "theta"), j.at("grid2").at("theta_tot").get<double>(), 1e-3);
+  for (const char* k : {"camera", "shadow", "bounce1", "all"}) {
+    SCOPED_TRACE(k);
+    expect_grid2_levels(j, j.at("rays").at(k));
+    const auto& c = j.at("rays").at(k);
+    EXPECT_NEAR(c.at("refs_per_ray").get<double>(),
+                c.at("p_avg").get<double>() * j.at("grid2").at("theta_tot").get<double>() * c.at("kappa").get<double>(),
+                1e-9 * c.at("refs_per_ray").get<double>());
+  }
+}
+
+TEST(Grid2Statistics, CastReportsItsSectionAndLevels) {
+  const auto j = cast_report({"--accel", "grid2", "--rays", "lines", "--n", "5000"});
+  EXPECT_EQ(j.at("accel"), "grid2");
+  for (const char* key : {"top_res", "top_cell_size", "top_occupied", "N_c", "N", "build_s", "bytes", "theta_tot",
+                          "theta_avg", "theta_max", "empty_fraction", "degenerate", "levels"})
+    EXPECT_TRUE(j.at("grid2").contains(key)) << key;
+  EXPECT_FALSE(j.at("rays").at("lines").contains("p_tot_predicted"));  // eq 22 needs one cell size
+  expect_grid2_levels(j, j.at("rays").at("lines"));
+}
+
 /// Inside "sample", eq 25 holds with the class's sigma_theta and the grid's
 /// theta_avg: 1 + (sigma_p / p_avg)(sigma_theta / theta_avg) r = kappa_eq25.
 void expect_sample_reproduces_eq25(const nlohmann::json& c, double theta_avg) {

@@ -37,7 +37,7 @@ DocumentedKeys documented_keys() {
     }
   }
   DocumentedKeys keys;
-  static const std::regex leading(R"(^([a-z_]+(, [a-z_]+)*)  )");
+  static const std::regex leading(R"(^([a-z_][a-z_0-9]*(, [a-z_][a-z_0-9]*)*)  )");
   static const std::regex name(R"([A-Za-z_][A-Za-z_0-9]*)");
   std::istringstream lines(block);
   int depth = 0;
@@ -75,6 +75,10 @@ DocumentedKeys documented_keys() {
 }
 
 void collect(const nlohmann::json& j, std::set<std::string>& into) {
+  if (j.is_array()) {  // lists of objects (grid2's levels): their keys too
+    for (const auto& element : j) collect(element, into);
+    return;
+  }
   if (!j.is_object()) return;
   for (const auto& [key, value] : j.items()) {
     into.insert(key);
@@ -120,17 +124,31 @@ TEST(ReportKeys, EveryDocumentedKeyIsInTheReports) {
   const nlohmann::json sampled = report_of({"cast", scene, "--rays", "lines", "--n", "2000", "--grid-res", "64",
                                             "--threads", "2", "--grid-max-bytes", "9000000"});
   ASSERT_TRUE(sampled.contains("stats_note"));
+  // grid2's section, in place of grid's, and its levels per class.
+  const nlohmann::json grid2_render = report_of({"render", scene, "--accel", "grid2", "--spp", "1", "--width", "16",
+                                                 "--height", "16", "--out", (tmp / "g.exr").string()});
+  const nlohmann::json grid2_lines = report_of({"cast", scene, "--accel", "grid2", "--rays", "lines", "--n", "2000"});
   std::set<std::string> seen;
-  for (const auto* j : {&render, &budgeted, &chosen, &lines, &segments, &sampled}) collect(*j, seen);
+  for (const auto* j : {&render, &budgeted, &chosen, &lines, &segments, &sampled, &grid2_render, &grid2_lines})
+    collect(*j, seen);
   for (const auto& key : documented.all) EXPECT_TRUE(seen.count(key)) << key << " is documented but in no report";
   // Top-level keys: in a render's report and in a cast's (render is null in a
   // cast, cast absent from a render, stats_note only when there is a note).
+  // The accelerator's own section is the one of the accelerator that ran:
+  // grid in the default reports, grid2 in grid2's.
   for (const auto& key : documented.top) {
+    const bool grid2_only = key == "grid2", grid_only = key == "grid";
     if (key != "cast" && key != "stats_note") {
-      EXPECT_TRUE(render.contains(key)) << key << " (render)";
+      EXPECT_TRUE((grid2_only ? grid2_render : render).contains(key)) << key << " (render)";
+      if (!grid_only) {
+        EXPECT_TRUE(grid2_render.contains(key)) << key << " (grid2 render)";
+      }
     }
     if (key != "stats_note") {
-      EXPECT_TRUE(lines.contains(key)) << key << " (cast)";
+      EXPECT_TRUE((grid2_only ? grid2_lines : lines).contains(key)) << key << " (cast)";
+      if (!grid_only) {
+        EXPECT_TRUE(grid2_lines.contains(key)) << key << " (grid2 cast)";
+      }
     }
   }
   // The version the README documents is the one the reports carry.
@@ -138,9 +156,9 @@ TEST(ReportKeys, EveryDocumentedKeyIsInTheReports) {
   const std::string text((std::istreambuf_iterator<char>(readme)), std::istreambuf_iterator<char>());
   std::smatch version;
   ASSERT_TRUE(std::regex_search(text, version, std::regex(R"(\nschema_version +([0-9]+))")));
-  for (const auto* j : {&render, &lines}) EXPECT_EQ(j->at("schema_version").get<int>(), std::stoi(version[1].str()));
+  for (const auto* j : {&render, &lines, &grid2_render}) EXPECT_EQ(j->at("schema_version").get<int>(), std::stoi(version[1].str()));
   // And nothing undocumented at the top.
-  for (const auto* j : {&render, &lines, &sampled})
+  for (const auto* j : {&render, &lines, &sampled, &grid2_render, &grid2_lines})
     for (const auto& [key, value] : j->items()) EXPECT_TRUE(documented.top.count(key)) << key << " is not documented";
 }
 
