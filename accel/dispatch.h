@@ -37,7 +37,7 @@ decltype(auto) visit_accelerator(const Accelerator& accel, F&& f) {
       // kind() is grid only for a UniformGrid: the cast is checked by construction.
       return std::forward<F>(f)(static_cast<const UniformGrid&>(accel));
     case AccelKind::grid2:
-      return std::forward<F>(f)(static_cast<const TwoLevelGrid&>(accel));
+      return std::forward<F>(f)(static_cast<const NestedGrid&>(accel));
     case AccelKind::naive:
     case AccelKind::embree:
       break;

@@ -10,57 +10,66 @@
 
 namespace kappa {
 
-std::optional<Hit> TwoLevelGrid::closest_hit(const Ray& ray) const {
+std::optional<Hit> NestedGrid::closest_hit(const Ray& ray) const {
   NoRecorder none;
   return closest_hit(ray, none);
 }
 
-bool TwoLevelGrid::any_hit(const Ray& ray) const {
+bool NestedGrid::any_hit(const Ray& ray) const {
   NoRecorder none;
   return any_hit(ray, none);
 }
 
-std::uint64_t TwoLevelGrid::top_of_leaf(std::uint64_t i) const {
-  // first_leaf rises strictly (every top cell has at least one leaf).
-  const auto it = std::upper_bound(m_top.begin(), m_top.end(), i,
-                                   [](std::uint64_t leaf, const TopCell& t) { return leaf < t.first_leaf; });
-  return std::uint64_t(it - m_top.begin()) - 1;
-}
-
-CellBox TwoLevelGrid::top_box(int ix, int iy, int iz) const {
-  const GridInfo& g = m_info.top;
-  const Vec3d lo = g.lo + Vec3d{double(ix), double(iy), double(iz)} * g.cell_size;
-  return {lo, lo + g.cell_size};
-}
-
-std::vector<std::uint32_t> TwoLevelGrid::occupancies() const {
+std::vector<std::uint32_t> NestedGrid::occupancies() const {
   std::vector<std::uint32_t> theta(m_info.leaves);
   for (std::uint64_t i = 0; i < m_info.leaves; ++i) theta[i] = m_offsets[i + 1] - m_offsets[i];
   return theta;
 }
 
-CellBox TwoLevelGrid::cell_box(std::uint64_t i) const {
-  const std::uint64_t c = top_of_leaf(i);
-  const TopCell& top = m_top[c];
-  const GridInfo sub = sub_grid(c, top);
-  const std::uint64_t local = i - top.first_leaf, nx = top.n[0], ny = top.n[1];
-  const Vec3d index{double(local % nx), double((local / nx) % ny), double(local / (nx * ny))};
-  const Vec3d lo = sub.lo + index * sub.cell_size;
-  return {lo, lo + sub.cell_size};
+CellBox NestedGrid::cell_box(std::uint64_t i) const {
+  std::call_once(m_boxes_once, [this] {
+    // Down every tree, with the walk's arithmetic: a sub-grid's cells are
+    // its cell's size over n from its low corner.
+    m_leaf_boxes.resize(m_info.leaves);
+    const GridInfo& g = m_info.top;
+    const auto visit = [this](auto&& self, const Node& node, const Vec3d& lo, const Vec3d& size) -> void {
+      if (node.kind != refined) {
+        m_leaf_boxes[node.index] = {lo, lo + size};
+        return;
+      }
+      const Vec3d l{sub_cell_size(size.x, node.n[0]), sub_cell_size(size.y, node.n[1]), sub_cell_size(size.z, node.n[2])};
+      std::uint32_t child = node.index;
+      for (int z = 0; z < node.n[2]; ++z)
+        for (int y = 0; y < node.n[1]; ++y)
+          for (int x = 0; x < node.n[0]; ++x, ++child)
+            self(self, m_nodes[child], lo + Vec3d{double(x), double(y), double(z)} * l, l);
+    };
+    std::uint64_t c = 0;
+    for (int z = 0; z < g.resolution.nz; ++z)
+      for (int y = 0; y < g.resolution.ny; ++y)
+        for (int x = 0; x < g.resolution.nx; ++x, ++c)
+          visit(visit, m_nodes[c], g.lo + Vec3d{double(x), double(y), double(z)} * g.cell_size, g.cell_size);
+  });
+  return m_leaf_boxes[i];
 }
 
-int TwoLevelGrid::cell_level(std::uint64_t i) const { return m_top[top_of_leaf(i)].occupied ? 1 : 0; }
-
-std::string TwoLevelGrid::resolution_text() const {
-  return m_info.top.resolution.to_string() + " top, " + std::to_string(m_info.leaves) + " leaves";
+std::string NestedGrid::resolution_text() const {
+  return m_info.top.resolution.to_string() + " top, " + std::to_string(m_info.leaves) + " leaves in " +
+         std::to_string(m_info.levels) + " levels";
 }
 
-nlohmann::ordered_json TwoLevelGrid::report_section() const {
+std::vector<CellLayout::Level> NestedGrid::levels() const {
+  std::vector<Level> out;
+  for (int k = 0; k < m_info.levels; ++k) out.push_back({k, m_info.level[k].N_c, m_info.level[k].theta_tot});
+  return out;
+}
+
+nlohmann::ordered_json NestedGrid::report_section() const {
   const Grid2Info& g = m_info;
   nlohmann::ordered_json j;
   j["top_res"] = {g.top.resolution.nx, g.top.resolution.ny, g.top.resolution.nz};
   j["top_cell_size"] = {g.top.cell_size.x, g.top.cell_size.y, g.top.cell_size.z};
-  j["top_occupied"] = g.top_occupied;
+  j["refined"] = g.refined;
   j["N_c"] = g.leaves;
   j["N"] = g.N;
   j["build_s"] = g.build_s;
@@ -71,8 +80,9 @@ nlohmann::ordered_json TwoLevelGrid::report_section() const {
   j["empty_fraction"] = g.leaves > 0 ? double(g.empty_leaves) / double(g.leaves) : 0.0;
   j["degenerate"] = g.degenerate;
   nlohmann::ordered_json levels = nlohmann::ordered_json::array();
-  for (const Grid2Level& level : g.levels)
-    levels.push_back({{"level", level.level}, {"N_c", level.N_c}, {"theta_tot", level.theta_tot}, {"bytes", level.bytes}});
+  for (int k = 0; k < g.levels; ++k)
+    levels.push_back({{"level", k}, {"N_c", g.level[k].N_c}, {"theta_tot", g.level[k].theta_tot},
+                      {"bytes", g.level[k].bytes}});
   j["levels"] = levels;
   return j;
 }

@@ -1,8 +1,9 @@
 // Building grid2: the top grid's lists (two parallel passes over the
 // triangles, as the uniform grid builds), then, in parallel over top cells,
-// each occupied top cell's sub-grid: its resolution from its triangle count,
-// its leaves counted, then filled. The top lists are dropped once the leaves
-// hold the triangles.
+// each top cell's tree: a cell holding more than kGrid2LeafTriangles
+// triangles becomes a sub-grid sized by its count, its cells' lists made
+// from its own, and so on down to kMaxGrid2Levels levels. The trees are then
+// laid out one after another: nodes, leaf offsets, references.
 #include <tbb/blocked_range.h>
 
 #include <algorithm>
@@ -21,13 +22,15 @@
 namespace kappa {
 namespace {
 
+using Node = NestedGrid::Node;
+
 /// A sub-grid's occupancy predicted by eq 19 from its triangles clipped to
-/// its top cell (extents and projected areas no larger than the cell's),
-/// each grown by the insertion margin m on every side (a cell takes the
-/// triangles within m of it: at a coordinate magnitude of 1e6 m is about 4,
-/// larger than a small object's cells): what keeps a top cell full of
-/// copies of one large triangle, or of triangles smaller than the margin,
-/// from exploding, as bounded_resolution keeps the uniform grid.
+/// the cell it refines (extents and projected areas no larger than the
+/// cell's), each grown by the insertion margin m on every side (a cell takes
+/// the triangles within m of it: at a coordinate magnitude of 1e6 m is about
+/// 4, larger than a small object's cells): what keeps a cell full of copies
+/// of one large triangle, or of triangles smaller than the margin, from
+/// exploding, as bounded_resolution keeps the uniform grid.
 struct ClippedOccupancy {
   double N = 0;
   Vec3d extent_sum, projected_sum;
@@ -52,7 +55,7 @@ struct ClippedOccupancy {
   }
 };
 
-/// The sub-grid of a top cell of size `cell` holding `n` triangles: near-cubic
+/// The sub-grid of a cell of size `cell` holding `n` triangles: near-cubic
 /// cells, leaf_density * n of them, at most kMaxSubAxis per axis, lowered by
 /// steps of 2^(1/4) while eq 19 predicts more than kThetaBoundPerTriangle * n
 /// + N_c references.
@@ -75,27 +78,102 @@ GridResolution sub_resolution(const Vec3d& cell, double n, double leaf_density, 
   return r;
 }
 
+/// One top cell's tree, built by one task: nodes (the root first, each
+/// refined node's children contiguous), and its leaves' lists in leaf order.
+/// Indices are local; layout() makes them global.
+struct LocalTree {
+  std::vector<Node> nodes;
+  std::vector<std::uint32_t> leaf_sizes;
+  std::vector<std::uint8_t> leaf_levels;
+  std::vector<TriangleId> refs;
+  std::uint64_t refined[kMaxGrid2Levels] = {};  ///< refined cells per level
+};
+
+/// A cell's box for insertion and its size as the walk steps it: the walk's
+/// cells of a sub-grid are its cell's size over n, from its low corner.
+struct CellFrame {
+  Vec3d lo, hi, size;
+};
+
+class TreeBuilder {
+ public:
+  TreeBuilder(std::span<const Triangle> triangles, double margin, double leaf_density, LocalTree& tree)
+      : m_triangles(triangles), m_margin(margin), m_leaf_density(leaf_density), m_tree(tree) {}
+
+  /// Fills node `index` (already in the tree) for a cell holding `ids`
+  /// (ascending), at `level`.
+  void build(std::size_t index, const CellFrame& cell, std::span<const TriangleId> ids, int level) {
+    if (ids.size() <= kGrid2LeafTriangles || level + 1 >= kMaxGrid2Levels) return make_leaf(index, ids, level);
+    ClippedOccupancy occupancy;
+    const Vec3d extent = cell.hi - cell.lo;
+    for (TriangleId id : ids) occupancy.add(m_triangles[id], extent, m_margin);
+    const GridResolution r = sub_resolution(extent, double(ids.size()), m_leaf_density, occupancy);
+    if (r.cells() == 1) return make_leaf(index, ids, level);
+    // Refining pays only if a ray meets fewer triangles in a sub-grid cell
+    // than in the cell: not for triangles that each span the cell (copies of
+    // one large triangle, a wall), where every level would multiply the
+    // references. Eq 19 must predict at most half the cell's triangles per
+    // sub-grid cell on average.
+    const Vec3d l{extent.x / r.nx, extent.y / r.ny, extent.z / r.nz};
+    if (occupancy.theta_tot(l) > 0.5 * double(ids.size()) * double(r.cells())) return make_leaf(index, ids, level);
+
+    GridInfo sub;
+    sub.resolution = r;
+    sub.margin = m_margin;
+    sub.lo = cell.lo, sub.hi = cell.hi;
+    sub.cell_size = Vec3d{sub_cell_size(cell.size.x, r.nx), sub_cell_size(cell.size.y, r.ny), sub_cell_size(cell.size.z, r.nz)};
+    const Vec3d inv{1.0 / sub.cell_size.x, 1.0 / sub.cell_size.y, 1.0 / sub.cell_size.z};
+    // The children's lists: counted, then filled in id order (so ascending).
+    const std::uint64_t children = r.cells();
+    std::vector<std::uint32_t> offsets(children + 1, 0);
+    for (TriangleId id : ids)
+      for_each_overlapped_cell(sub, inv, m_triangles[id], [&](std::uint64_t c) { ++offsets[c + 1]; });
+    for (std::uint64_t c = 0; c < children; ++c) offsets[c + 1] += offsets[c];
+    std::vector<TriangleId> lists(offsets[children]);
+    std::vector<std::uint32_t> cursor(offsets.begin(), offsets.end() - 1);
+    for (TriangleId id : ids)
+      for_each_overlapped_cell(sub, inv, m_triangles[id], [&](std::uint64_t c) { lists[cursor[c]++] = id; });
+
+    const std::size_t first = m_tree.nodes.size();
+    m_tree.nodes.resize(first + children);
+    Node& node = m_tree.nodes[index];
+    node.kind = NestedGrid::refined;
+    node.index = std::uint32_t(first);
+    node.n[0] = std::uint8_t(r.nx), node.n[1] = std::uint8_t(r.ny), node.n[2] = std::uint8_t(r.nz);
+    ++m_tree.refined[level];
+    std::uint64_t c = 0;
+    for (int z = 0; z < r.nz; ++z)
+      for (int y = 0; y < r.ny; ++y)
+        for (int x = 0; x < r.nx; ++x, ++c) {
+          const int k[3] = {x, y, z};
+          CellFrame child;
+          for (int a = 0; a < 3; ++a) {
+            (a == 0 ? child.lo.x : a == 1 ? child.lo.y : child.lo.z) = detail::cell_lo(sub, a, k[a]);
+            (a == 0 ? child.hi.x : a == 1 ? child.hi.y : child.hi.z) = detail::cell_hi(sub, a, k[a]);
+          }
+          child.size = sub.cell_size;
+          build(first + c, child, std::span(lists).subspan(offsets[c], offsets[c + 1] - offsets[c]), level + 1);
+        }
+  }
+
+ private:
+  void make_leaf(std::size_t index, std::span<const TriangleId> ids, int level) {
+    Node& node = m_tree.nodes[index];
+    node.kind = ids.empty() ? NestedGrid::empty : NestedGrid::list;
+    node.index = std::uint32_t(m_tree.leaf_sizes.size());
+    m_tree.leaf_sizes.push_back(std::uint32_t(ids.size()));
+    m_tree.leaf_levels.push_back(std::uint8_t(level));
+    m_tree.refs.insert(m_tree.refs.end(), ids.begin(), ids.end());
+  }
+
+  std::span<const Triangle> m_triangles;
+  double m_margin, m_leaf_density;
+  LocalTree& m_tree;
+};
+
 }  // namespace
 
-GridInfo TwoLevelGrid::sub_grid(std::size_t top_index, const TopCell& top) const {
-  const GridInfo& g = m_info.top;
-  const std::uint64_t nx = std::uint64_t(g.resolution.nx), ny = std::uint64_t(g.resolution.ny);
-  const int ti[3] = {int(top_index % nx), int((top_index / nx) % ny), int(top_index / (nx * ny))};
-  GridInfo sub;
-  sub.resolution = {top.n[0], top.n[1], top.n[2]};
-  sub.margin = g.margin;
-  for (int a = 0; a < 3; ++a) {
-    const double lo = detail::cell_lo(g, a, ti[a]), hi = detail::cell_hi(g, a, ti[a]);
-    // The walk's sub-cells: the top cell's size over n (grid2_traverse.h).
-    const double l = g.cell_size[a] / top.n[a];
-    (a == 0 ? sub.lo.x : a == 1 ? sub.lo.y : sub.lo.z) = lo;
-    (a == 0 ? sub.hi.x : a == 1 ? sub.hi.y : sub.hi.z) = hi;
-    (a == 0 ? sub.cell_size.x : a == 1 ? sub.cell_size.y : sub.cell_size.z) = l;
-  }
-  return sub;
-}
-
-TwoLevelGrid::TwoLevelGrid(std::span<const Triangle> triangles, const Grid2Options& options, TaskProgress* progress)
+NestedGrid::NestedGrid(std::span<const Triangle> triangles, const Grid2Options& options, TaskProgress* progress)
     : m_triangles(triangles) {
   const auto start = std::chrono::steady_clock::now();
   if (triangles.size() >= std::size_t(kNoTriangle)) throw InputError("grid2: more than 2^32 - 1 triangles");
@@ -120,12 +198,12 @@ TwoLevelGrid::TwoLevelGrid(std::span<const Triangle> triangles, const Grid2Optio
     (a == 0 ? g.cell_size.x : a == 1 ? g.cell_size.y : g.cell_size.z) = l;
     (a == 0 ? m_inv_top.x : a == 1 ? m_inv_top.y : m_inv_top.z) = 1.0 / l;
   }
-  const std::uint64_t top_bytes = top_cells * sizeof(TopCell);
+  const std::uint64_t top_bytes = top_cells * (sizeof(Node) + sizeof(std::uint32_t));
   if (top_bytes > options.max_bytes)
     throw InputError("grid2: a top grid of " + g.resolution.to_string() + " cells needs " + byte_size(top_bytes) +
                      ", over --grid-max-bytes (" + byte_size(options.max_bytes) + ")");
 
-  // The top grid's lists: count, prefix sum, fill from each cell's end.
+  // The top grid's lists: count, prefix sum, fill from each cell's end, sort.
   begin_phase(progress, "grid2 " + g.resolution.to_string() + ": top cells", 2 * usable_ids.size());
   std::vector<std::uint64_t> top_offsets(top_cells + 1, 0);
   kappa::parallel_for(tbb::blocked_range<std::size_t>(0, usable_ids.size()), [&](const auto& range) {
@@ -151,90 +229,88 @@ TwoLevelGrid::TwoLevelGrid(std::span<const Triangle> triangles, const Grid2Optio
       });
     advance(progress, range.size());
   });
-  // Each top list ascending: the leaves are filled from it in that order.
-  kappa::parallel_for(std::uint64_t(0), top_cells, [&](std::uint64_t c) {
-    std::sort(top_lists.begin() + std::ptrdiff_t(top_offsets[c]), top_lists.begin() + std::ptrdiff_t(top_offsets[c + 1]));
-  });
 
-  // Sub-grid resolutions, then where each top cell's leaves start.
-  m_top.assign(top_cells, TopCell{});
-  kappa::parallel_for(std::uint64_t(0), top_cells, [&](std::uint64_t c) {
-    const std::uint64_t n = top_offsets[c + 1] - top_offsets[c];
-    if (n == 0) return;
-    const GridInfo whole = sub_grid(c, TopCell{});
-    const Vec3d cell = whole.hi - whole.lo;
-    ClippedOccupancy occupancy;
-    for (std::uint64_t k = top_offsets[c]; k < top_offsets[c + 1]; ++k) occupancy.add(triangles[top_lists[k]], cell, g.margin);
-    const GridResolution r = sub_resolution(cell, double(n), options.leaf_density, occupancy);
-    m_top[c].n[0] = std::uint8_t(r.nx), m_top[c].n[1] = std::uint8_t(r.ny), m_top[c].n[2] = std::uint8_t(r.nz);
-    m_top[c].occupied = 1;
-  });
-  std::uint64_t leaves = 0;
-  for (std::uint64_t c = 0; c < top_cells; ++c) {
-    if (leaves >= std::numeric_limits<std::uint32_t>::max()) break;
-    m_top[c].first_leaf = std::uint32_t(leaves);
-    leaves += std::uint64_t(m_top[c].n[0]) * m_top[c].n[1] * m_top[c].n[2];
-    m_info.top_occupied += m_top[c].occupied;
-  }
-  const std::uint64_t offset_bytes = (leaves + 1) * sizeof(std::uint32_t);
-  if (leaves >= std::numeric_limits<std::uint32_t>::max() || top_bytes + offset_bytes > options.max_bytes)
-    throw InputError("grid2: " + std::to_string(leaves) + " leaves need " + byte_size(top_bytes + offset_bytes) +
-                     " for offsets alone, over --grid-max-bytes (" + byte_size(options.max_bytes) +
-                     ") or 2^32 - 1 leaves");
-  m_info.leaves = leaves;
-
-  // Leaves counted: each top cell's triangles into its sub-grid (one task a
-  // top cell, so no atomics).
-  begin_phase(progress, "grid2 " + g.resolution.to_string() + ": sub-grids", 2 * top_cells);
-  m_offsets.assign(leaves + 1, 0);
-  const auto for_each_leaf_of = [&](std::uint64_t c, auto&& f, bool descending) {
-    const GridInfo sub = sub_grid(c, m_top[c]);
-    const Vec3d inv{1.0 / sub.cell_size.x, 1.0 / sub.cell_size.y, 1.0 / sub.cell_size.z};
-    const std::uint64_t first = top_offsets[c], end = top_offsets[c + 1];
-    for (std::uint64_t k = 0; k < end - first; ++k) {
-      const TriangleId id = top_lists[descending ? end - 1 - k : first + k];
-      for_each_overlapped_cell(sub, inv, triangles[id], [&](std::uint64_t leaf) { f(m_top[c].first_leaf + leaf, id); });
-    }
-  };
+  // Each top cell's tree, in parallel (one task a top cell).
+  begin_phase(progress, "grid2 " + g.resolution.to_string() + ": sub-grids", top_cells);
+  std::vector<LocalTree> trees(top_cells);
+  const std::uint64_t nx = std::uint64_t(g.resolution.nx), ny = std::uint64_t(g.resolution.ny);
   kappa::parallel_for(tbb::blocked_range<std::uint64_t>(0, top_cells), [&](const auto& range) {
-    for (std::uint64_t c = range.begin(); c != range.end(); ++c)
-      if (m_top[c].occupied) for_each_leaf_of(c, [&](std::uint64_t leaf, TriangleId) { ++m_offsets[leaf]; }, false);
+    for (std::uint64_t c = range.begin(); c != range.end(); ++c) {
+      const auto ids = std::span(top_lists).subspan(top_offsets[c], top_offsets[c + 1] - top_offsets[c]);
+      std::sort(ids.begin(), ids.end());
+      const int k[3] = {int(c % nx), int((c / nx) % ny), int(c / (nx * ny))};
+      CellFrame cell;
+      for (int a = 0; a < 3; ++a) {
+        (a == 0 ? cell.lo.x : a == 1 ? cell.lo.y : cell.lo.z) = detail::cell_lo(g, a, k[a]);
+        (a == 0 ? cell.hi.x : a == 1 ? cell.hi.y : cell.hi.z) = detail::cell_hi(g, a, k[a]);
+      }
+      cell.size = g.cell_size;
+      LocalTree& tree = trees[c];
+      tree.nodes.resize(1);
+      TreeBuilder(triangles, g.margin, options.leaf_density, tree).build(0, cell, ids, 0);
+    }
     advance(progress, range.size());
   });
-  // Inclusive prefix sum: each leaf's end, counted down to its start while filling.
-  std::uint64_t total = 0;
+  std::vector<TriangleId>().swap(top_lists);
+
+  // Where each tree goes: its non-root nodes after the top cells', its
+  // leaves and references after the previous trees'.
+  std::vector<std::uint64_t> node_base(top_cells + 1), leaf_base(top_cells + 1), ref_base(top_cells + 1);
+  node_base[0] = top_cells, leaf_base[0] = 0, ref_base[0] = 0;
+  for (std::uint64_t c = 0; c < top_cells; ++c) {
+    node_base[c + 1] = node_base[c] + trees[c].nodes.size() - 1;
+    leaf_base[c + 1] = leaf_base[c] + trees[c].leaf_sizes.size();
+    ref_base[c + 1] = ref_base[c] + trees[c].refs.size();
+    for (int k = 0; k < kMaxGrid2Levels; ++k) {
+      m_info.refined += trees[c].refined[k];
+      m_info.level[k].bytes += trees[c].refined[k] * sizeof(Node);  // a refined cell's node is its level's
+    }
+  }
+  const std::uint64_t nodes = node_base[top_cells], leaves = leaf_base[top_cells], refs = ref_base[top_cells];
+  const std::uint64_t bytes = nodes * sizeof(Node) + (leaves + 1) * sizeof(std::uint32_t) + refs * sizeof(TriangleId);
+  if (nodes >= std::numeric_limits<std::uint32_t>::max() || refs >= std::numeric_limits<std::uint32_t>::max() ||
+      bytes > options.max_bytes)
+    throw InputError("grid2: " + std::to_string(leaves) + " leaves holding " + std::to_string(refs) +
+                     " triangle references need " + byte_size(bytes) + ", over --grid-max-bytes (" +
+                     byte_size(options.max_bytes) + ") or 2^32 - 1 cells or references");
+  m_nodes.resize(nodes);
+  m_offsets.resize(leaves + 1);
+  m_refs.resize(refs);
+  m_leaf_level.resize(leaves);
+  kappa::parallel_for(std::uint64_t(0), top_cells, [&](std::uint64_t c) {
+    const LocalTree& tree = trees[c];
+    const auto global = [&](Node n) {
+      n.index = std::uint32_t(n.kind == NestedGrid::refined ? node_base[c] + n.index - 1 : leaf_base[c] + n.index);
+      return n;
+    };
+    m_nodes[c] = global(tree.nodes[0]);
+    for (std::size_t j = 1; j < tree.nodes.size(); ++j) m_nodes[node_base[c] + j - 1] = global(tree.nodes[j]);
+    std::uint64_t offset = ref_base[c];
+    for (std::size_t j = 0; j < tree.leaf_sizes.size(); ++j) {
+      m_offsets[leaf_base[c] + j] = std::uint32_t(offset);
+      m_leaf_level[leaf_base[c] + j] = tree.leaf_levels[j];
+      offset += tree.leaf_sizes[j];
+    }
+    std::copy(tree.refs.begin(), tree.refs.end(), m_refs.begin() + std::ptrdiff_t(ref_base[c]));
+  });
+  m_offsets[leaves] = std::uint32_t(refs);
+
+  m_info.leaves = leaves;
+  m_info.theta_tot = refs;
+  m_info.bytes = bytes;
+  for (int k = 0; k < kMaxGrid2Levels; ++k) m_info.level[k].level = k;
   for (std::uint64_t i = 0; i < leaves; ++i) {
-    const std::uint32_t n = m_offsets[i];
+    const std::uint32_t n = m_offsets[i + 1] - m_offsets[i];
+    Grid2Level& level = m_info.level[m_leaf_level[i]];
+    ++level.N_c;
+    level.theta_tot += n;
+    level.bytes += sizeof(Node) + sizeof(std::uint32_t) + n * sizeof(TriangleId);
     m_info.max_occupancy = std::max(m_info.max_occupancy, n);
     m_info.empty_leaves += n == 0;
-    total += n;
-    m_offsets[i] = std::uint32_t(std::min<std::uint64_t>(total, std::numeric_limits<std::uint32_t>::max()));
+    m_info.levels = std::max(m_info.levels, int(m_leaf_level[i]) + 1);
   }
-  const std::uint64_t bytes = top_bytes + offset_bytes + total * sizeof(TriangleId);
-  if (total >= std::numeric_limits<std::uint32_t>::max() || bytes > options.max_bytes)
-    throw InputError("grid2: its leaves hold " + std::to_string(total) + " triangle references (" + byte_size(bytes) +
-                     "), over --grid-max-bytes (" + byte_size(options.max_bytes) + ") or 2^32 - 1 references");
-  m_offsets[leaves] = std::uint32_t(total);
-  m_refs.resize(total);
-  // Filled from each top list's end down, so every leaf's list ends ascending.
-  kappa::parallel_for(tbb::blocked_range<std::uint64_t>(0, top_cells), [&](const auto& range) {
-    for (std::uint64_t c = range.begin(); c != range.end(); ++c)
-      if (m_top[c].occupied)
-        for_each_leaf_of(c, [&](std::uint64_t leaf, TriangleId id) {
-          KAPPA_CHECK_GT(m_offsets[leaf], 0u);
-          m_refs[--m_offsets[leaf]] = id;
-        }, true);
-    advance(progress, range.size());
-  });
-  KAPPA_CHECK_EQ(m_offsets[0], 0u);
-  m_info.theta_tot = total;
-  m_info.bytes = bytes;
-
-  // Per level: level 0 the empty top cells (their records and offsets),
-  // level 1 the sub-grids' leaves with their references.
-  m_info.levels[0] = {0, top_cells - m_info.top_occupied, 0,
-                      (top_cells - m_info.top_occupied) * (sizeof(TopCell) + sizeof(std::uint32_t))};
-  m_info.levels[1] = {1, leaves - m_info.levels[0].N_c, total, bytes - m_info.levels[0].bytes};
+  // The offsets' end goes with the top level: the levels' bytes add up to the whole.
+  m_info.level[0].bytes += sizeof(std::uint32_t);
   m_info.build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -1,7 +1,7 @@
 // grid2's walk, templated on what it records (the protocol of recorder.h) as
 // the uniform grid's is (grid_traverse.h): a 3D-DDA over the top grid that,
-// in each top cell holding triangles, runs a second DDA over that cell's
-// sub-grid from where the ray entered it. Empty top cells cost one step.
+// in each refined cell, runs a DDA over that cell's sub-grid from where the
+// ray entered it, and so on down the levels. Empty top cells cost one step.
 #pragma once
 
 #include <cfloat>
@@ -15,37 +15,178 @@
 
 namespace kappa {
 
+namespace detail {
+
+/// One ray's walk through grid2: what every level's DDA shares.
 template <GridWalk Mode, class Recorder>
-bool TwoLevelGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const {
-  constexpr bool AnyHit = Mode == GridWalk::any;
-  constexpr bool Whole = Mode == GridWalk::whole;
-  constexpr bool Closest = !AnyHit && !Whole;
+struct Grid2Walk {
+  static constexpr bool AnyHit = Mode == GridWalk::any;
+  static constexpr bool Closest = Mode == GridWalk::closest;
+
+  Grid2Walk(const Ray& r, Hit& b, Recorder& rec, const Triangle* tris, const std::uint32_t* offs, const TriangleId* ids)
+      : ray(r), prepared(r), best(b), recorder(rec), triangles(tris), offsets(offs), refs(ids), o(r.o), d(r.d) {}
+
+  const Ray& ray;
+  const PreparedRay prepared;
+  Hit& best;
+  Recorder& recorder;
+  const Triangle* triangles;
+  const std::uint32_t* offsets;
+  const TriangleId* refs;
+  Vec3d o, d;
+  double inv_d[3] = {0, 0, 0};
+  double margin_t = 0, t_end = 0;
+  bool occluded = false;  ///< an any-hit walk found a hit
+  Mailbox mailbox;
+  WalkCounts counts;
+
+  /// Enters leaf `leaf` of `level` and tests its triangles; true when an
+  /// any-hit walk is done.
+  template <int Level, class BoxFn>
+  [[gnu::always_inline]] bool visit_leaf(const NestedGrid::Node& node, BoxFn&& box) {
+    constexpr int level = Level;
+    const std::uint32_t leaf = node.index;
+    ++counts.cells;
+    if constexpr (!std::is_same_v<Recorder, NoRecorder>) ++counts.level_cells[level];
+    recorder.cell(leaf, level, box);
+    if (node.kind == NestedGrid::empty) return false;
+    const std::uint32_t begin = offsets[leaf], end = offsets[leaf + 1];
+    if (begin == end) return false;
+    ++counts.occupied;
+    counts.refs += end - begin;
+    if constexpr (!std::is_same_v<Recorder, NoRecorder>) counts.level_refs[level] += end - begin;
+    for (std::uint32_t k = begin; k < end; ++k) {
+      const TriangleId id = refs[k];
+      if (mailbox.seen(id)) {
+        ++counts.skips;
+        continue;
+      }
+      recorder.test();
+      ++counts.tests;
+      if constexpr (!std::is_same_v<Recorder, NoRecorder>) ++counts.level_tests[level];
+      if constexpr (AnyHit) {
+        float t, b0, b1, b2;
+        if (intersect_triangle(prepared, triangles[id], ray.tmin, ray.tmax, t, b0, b1, b2)) {
+          recorder.hit();
+          occluded = true;
+          return true;
+        }
+      } else {
+        const TriangleId before = best.triangle;
+        const float before_t = best.t;
+        test_closest(prepared, triangles[id], id, ray.tmin, best);
+        if (best.triangle != before || best.t != before_t) recorder.hit();
+      }
+    }
+    return false;
+  }
+};
+
+/// What a sub-grid's walk ends with: go on along the parent, or stop the
+/// whole walk (a hit settled, or the ray ended).
+enum class SubWalk { go_on, stop };
+
+}  // namespace detail
+
+template <GridWalk Mode, class Recorder, int Level, class Walk>
+bool NestedGrid::walk_sub_grid(const Node& node, const double lo[3], const double size[3], const double inv_size[3],
+                               double t_enter, Walk& w, Recorder& recorder) const {
+  static_assert(Level >= 1 && Level < kMaxGrid2Levels);
+  // Returns true to stop the whole walk. The sub-grid's DDA starts at the
+  // point where the ray entered the parent cell (clamped into it: that point
+  // lies on its boundary, or before the box by the start margin).
+  const int n[3] = {node.n[0], node.n[1], node.n[2]};
+  int s[3], step[3], last[3];
+  double next[3], delta[3], l[3], inv_l[3];
+  std::int64_t stride[3] = {1, n[0], std::int64_t(n[0]) * n[1]};
+  std::int64_t child = node.index;
+  for (int a = 0; a < 3; ++a) {
+    l[a] = sub_cell_size(size[a], n[a]);
+    inv_l[a] = inv_size[a] * n[a];  // 1 / l to rounding: only picks the entry cell, which is clamped
+    const double p = w.o[a] + w.d[a] * t_enter;
+    s[a] = int(std::clamp(std::floor((p - lo[a]) * inv_l[a]), 0.0, double(n[a] - 1)));
+    child += s[a] * stride[a];
+    if (w.d[a] > 0) {
+      step[a] = 1;
+      last[a] = n[a];
+      next[a] = (lo[a] + (s[a] + 1) * l[a] - w.o[a]) * w.inv_d[a];
+      delta[a] = l[a] * w.inv_d[a];
+    } else if (w.d[a] < 0) {
+      step[a] = -1;
+      last[a] = -1;
+      next[a] = (lo[a] + s[a] * l[a] - w.o[a]) * w.inv_d[a];
+      delta[a] = -l[a] * w.inv_d[a];
+      stride[a] = -stride[a];
+    } else {
+      step[a] = 0;
+      last[a] = -2;
+      next[a] = std::numeric_limits<double>::infinity();
+      delta[a] = 0;
+    }
+  }
+  double t_cell = t_enter;
+  while (true) {
+    const Node& c = m_nodes[std::size_t(child)];
+    if (c.kind != refined) {
+      if (w.template visit_leaf<Level>(c, [&] {
+            const Vec3d cell_lo{lo[0] + s[0] * l[0], lo[1] + s[1] * l[1], lo[2] + s[2] * l[2]};
+            return CellBox{cell_lo, cell_lo + Vec3d{l[0], l[1], l[2]}};
+          }))
+        return true;
+    } else if constexpr (Level + 1 < kMaxGrid2Levels) {  // the build refines no cell of the last level
+      const double child_lo[3] = {lo[0] + s[0] * l[0], lo[1] + s[1] * l[1], lo[2] + s[2] * l[2]};
+      if (walk_sub_grid<Mode, Recorder, Level + 1>(c, child_lo, l, inv_l, t_cell, w, recorder)) return true;
+    }
+    const double exit = std::min(next[0], std::min(next[1], next[2]));
+    if constexpr (Walk::Closest) {
+      if (w.best.valid() && double(w.best.t) + w.margin_t < exit) return true;
+    }
+    if (!(exit <= w.t_end)) return true;
+    t_cell = exit;
+    const int a = next[0] <= next[1] && next[0] <= next[2] ? 0 : (next[1] <= next[2] ? 1 : 2);
+    s[a] += step[a];
+    if (s[a] == last[a]) return false;
+    child += stride[a];
+    next[a] += delta[a];
+  }
+}
+
+template <GridWalk Mode, class Recorder>
+bool NestedGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const {
+  constexpr bool Closest = Mode == GridWalk::closest;
   if (m_refs.empty() || !is_finite(ray.o) || !is_finite(ray.d) || ray.d == Vec3f{0, 0, 0}) return false;
   if (!(ray.tmin <= ray.tmax)) return false;
-  const Vec3d o(ray.o), d(ray.d);
   const GridInfo& g = m_info.top;
+  detail::Grid2Walk<Mode, Recorder> w(ray, best, recorder, m_triangles.data(), m_offsets.data(), m_refs.data());
+  const Vec3d& o = w.o;
+  const Vec3d& d = w.d;
 
   // Clip [tmin, tmax] to the box, as the uniform grid does (grid_traverse.h).
   double t0 = double(ray.tmin), t1 = double(ray.tmax);
-  double inv_d[3];
   for (int a = 0; a < 3; ++a) {
-    inv_d[a] = 0;
     if (d[a] == 0.0) {
       if (o[a] < g.lo[a] || o[a] > g.hi[a]) return false;
     } else {
-      inv_d[a] = 1.0 / d[a];
-      double tn = (g.lo[a] - o[a]) * inv_d[a], tf = (g.hi[a] - o[a]) * inv_d[a];
+      w.inv_d[a] = 1.0 / d[a];
+      double tn = (g.lo[a] - o[a]) * w.inv_d[a], tf = (g.hi[a] - o[a]) * w.inv_d[a];
       if (tn > tf) std::swap(tn, tf);
       t0 = std::max(t0, tn);
       t1 = std::min(t1, tf);
     }
   }
   const double margin = std::max(g.margin, kMarginUlps * double(FLT_EPSILON) * double(max_component(abs(ray.o))));
-  const double margin_t = margin / length(d);
+  w.margin_t = margin / length(d);
   const double t_in = t0, t_out = t1;
-  t0 = std::max(double(ray.tmin), t0 - margin_t);
-  if (t0 > t1 + margin_t) return false;
-  const double t_end = t1 + margin_t;
+  t0 = std::max(double(ray.tmin), t0 - w.margin_t);
+  if (t0 > t1 + w.margin_t) return false;
+  w.t_end = t1 + w.margin_t;
+  const auto done = [&](bool result) __attribute__((always_inline)) {
+    if constexpr (!std::is_same_v<Recorder, NoRecorder>) {
+      const double ray_end = Closest ? double(best.t) : double(ray.tmax);
+      recorder.finish(w.counts, WalkSegment{o, d, double(ray.tmin), t_in, t_out, ray_end});
+    }
+    return result;
+  };
 
   // The top grid's DDA.
   int cell[3], step[3], last[3];
@@ -60,13 +201,13 @@ bool TwoLevelGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const
     if (d[a] > 0) {
       step[a] = 1;
       last[a] = n;
-      t_next[a] = (g.lo[a] + (cell[a] + 1) * g.cell_size[a] - o[a]) * inv_d[a];
-      t_delta[a] = g.cell_size[a] * inv_d[a];
+      t_next[a] = (g.lo[a] + (cell[a] + 1) * g.cell_size[a] - o[a]) * w.inv_d[a];
+      t_delta[a] = g.cell_size[a] * w.inv_d[a];
     } else if (d[a] < 0) {
       step[a] = -1;
       last[a] = -1;
-      t_next[a] = (g.lo[a] + cell[a] * g.cell_size[a] - o[a]) * inv_d[a];
-      t_delta[a] = -g.cell_size[a] * inv_d[a];
+      t_next[a] = (g.lo[a] + cell[a] * g.cell_size[a] - o[a]) * w.inv_d[a];
+      t_delta[a] = -g.cell_size[a] * w.inv_d[a];
       stride[a] = -stride[a];
     } else {
       step[a] = 0;
@@ -75,117 +216,30 @@ bool TwoLevelGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const
       t_delta[a] = 0;
     }
   }
-
-  const PreparedRay prepared(ray);
-  detail::Mailbox mailbox;
-  WalkCounts counts;
-  const auto done = [&](bool result) __attribute__((always_inline)) {
-    if constexpr (!std::is_same_v<Recorder, NoRecorder>) {
-      const double ray_end = Closest ? double(best.t) : double(ray.tmax);
-      recorder.finish(counts, WalkSegment{o, d, double(ray.tmin), t_in, t_out, ray_end});
-    }
-    return result;
-  };
-  // Tests leaf `leaf`'s triangles; true when an any-hit walk is done.
-  const auto test_leaf = [&](std::uint64_t leaf) __attribute__((always_inline)) {
-    const std::uint32_t begin = m_offsets[std::size_t(leaf)], end = m_offsets[std::size_t(leaf) + 1];
-    if (begin == end) return false;
-    ++counts.occupied;
-    counts.refs += end - begin;
-    for (std::uint32_t k = begin; k < end; ++k) {
-      const TriangleId id = m_refs[k];
-      if (mailbox.seen(id)) {
-        ++counts.skips;
-        continue;
-      }
-      recorder.test();
-      ++counts.tests;
-      if constexpr (AnyHit) {
-        float t, b0, b1, b2;
-        if (intersect_triangle(prepared, m_triangles[id], ray.tmin, ray.tmax, t, b0, b1, b2)) {
-          recorder.hit();
-          return true;
-        }
-      } else {
-        const TriangleId before = best.triangle;
-        const float before_t = best.t;
-        test_closest(prepared, m_triangles[id], id, ray.tmin, best);
-        if (best.triangle != before || best.t != before_t) recorder.hit();
-      }
-    }
-    return false;
-  };
-
+  const double size[3] = {g.cell_size.x, g.cell_size.y, g.cell_size.z};
+  const double inv_size[3] = {m_inv_top.x, m_inv_top.y, m_inv_top.z};
   double tx = t_next[0], ty = t_next[1], tz = t_next[2];
   int ix = cell[0], iy = cell[1], iz = cell[2];
   double t_cell = t0;  // where the walk entered the current top cell
   while (true) {
-    const TopCell top = m_top[std::size_t(c)];
-    ++counts.cells;
-    if (!top.occupied) {
-      ++counts.top_cells;
-      recorder.cell(top.first_leaf, 0, [&] { return top_box(ix, iy, iz); });
+    const Node& top = m_nodes[std::size_t(c)];
+    if (top.kind != refined) {
+      if (w.template visit_leaf<0>(top, [&] {
+            const Vec3d lo = g.lo + Vec3d{double(ix), double(iy), double(iz)} * g.cell_size;
+            return CellBox{lo, lo + g.cell_size};
+          }))
+        return done(true);
     } else {
-      // The sub-grid's DDA, from the point where the ray entered this top
-      // cell (clamped into it: that point lies on its boundary, or before
-      // the box by the start margin). Leaves are numbered x fastest.
-      const int sn[3] = {top.n[0], top.n[1], top.n[2]};
-      const int ti[3] = {ix, iy, iz};
-      int s[3], sstep[3], slast[3];
-      double snext[3], sdelta[3];
-      std::int64_t sstride[3] = {1, sn[0], std::int64_t(sn[0]) * sn[1]};
-      double slo[3], sl[3];
-      const Vec3d p = o + d * t_cell;
-      std::int64_t leaf = top.first_leaf;
-      for (int a = 0; a < 3; ++a) {
-        sl[a] = g.cell_size[a] / sn[a];
-        slo[a] = g.lo[a] + ti[a] * g.cell_size[a];
-        s[a] = int(std::clamp(std::floor((p[a] - slo[a]) / sl[a]), 0.0, double(sn[a] - 1)));
-        leaf += s[a] * sstride[a];
-        if (d[a] > 0) {
-          sstep[a] = 1;
-          slast[a] = sn[a];
-          snext[a] = (slo[a] + (s[a] + 1) * sl[a] - o[a]) * inv_d[a];
-          sdelta[a] = sl[a] * inv_d[a];
-        } else if (d[a] < 0) {
-          sstep[a] = -1;
-          slast[a] = -1;
-          snext[a] = (slo[a] + s[a] * sl[a] - o[a]) * inv_d[a];
-          sdelta[a] = -sl[a] * inv_d[a];
-          sstride[a] = -sstride[a];
-        } else {
-          sstep[a] = 0;
-          slast[a] = -2;
-          snext[a] = std::numeric_limits<double>::infinity();
-          sdelta[a] = 0;
-        }
-      }
-      --counts.cells;  // the top cell itself is not a leaf: its sub-grid's cells are
-      while (true) {
-        ++counts.cells;
-        recorder.cell(std::uint64_t(leaf), 1, [&] {
-          const Vec3d lo{slo[0] + s[0] * sl[0], slo[1] + s[1] * sl[1], slo[2] + s[2] * sl[2]};
-          return CellBox{lo, lo + Vec3d{sl[0], sl[1], sl[2]}};
-        });
-        if (test_leaf(std::uint64_t(leaf))) return done(true);
-        const double s_exit = std::min(snext[0], std::min(snext[1], snext[2]));
-        if constexpr (Closest) {
-          if (best.valid() && double(best.t) + margin_t < s_exit) return done(true);
-        }
-        if (!(s_exit <= t_end)) return done(best.valid());
-        const int a = snext[0] <= snext[1] && snext[0] <= snext[2] ? 0 : (snext[1] <= snext[2] ? 1 : 2);
-        s[a] += sstep[a];
-        if (s[a] == slast[a]) break;
-        leaf += sstride[a];
-        snext[a] += sdelta[a];
-      }
+      const double lo[3] = {g.lo.x + ix * size[0], g.lo.y + iy * size[1], g.lo.z + iz * size[2]};
+      if (walk_sub_grid<Mode, Recorder, 1>(top, lo, size, inv_size, t_cell, w, recorder))
+        return done(Mode == GridWalk::any ? w.occluded : best.valid());
     }
     // Leave the top cell through its nearest plane (ties: x, then y, then z).
     const double t_exit = std::min(tx, std::min(ty, tz));
     if constexpr (Closest) {
-      if (best.valid() && double(best.t) + margin_t < t_exit) return done(true);
+      if (best.valid() && double(best.t) + w.margin_t < t_exit) return done(true);
     }
-    if (!(t_exit <= t_end)) break;
+    if (!(t_exit <= w.t_end)) break;
     t_cell = t_exit;
     if (tx <= ty && tx <= tz) {
       ix += step[0];
@@ -208,7 +262,7 @@ bool TwoLevelGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const
 }
 
 template <class Recorder>
-std::optional<Hit> TwoLevelGrid::closest_hit(const Ray& ray, Recorder& recorder) const {
+std::optional<Hit> NestedGrid::closest_hit(const Ray& ray, Recorder& recorder) const {
   Hit best;
   best.t = ray.tmax;
   if (!traverse<GridWalk::closest>(ray, best, recorder)) return std::nullopt;
@@ -216,13 +270,13 @@ std::optional<Hit> TwoLevelGrid::closest_hit(const Ray& ray, Recorder& recorder)
 }
 
 template <class Recorder>
-bool TwoLevelGrid::any_hit(const Ray& ray, Recorder& recorder) const {
+bool NestedGrid::any_hit(const Ray& ray, Recorder& recorder) const {
   Hit unused;
   return traverse<GridWalk::any>(ray, unused, recorder);
 }
 
 template <class Recorder>
-std::optional<Hit> TwoLevelGrid::walk_whole(const Ray& ray, Recorder& recorder) const {
+std::optional<Hit> NestedGrid::walk_whole(const Ray& ray, Recorder& recorder) const {
   Hit best;
   best.t = ray.tmax;
   if (!traverse<GridWalk::whole>(ray, best, recorder)) return std::nullopt;

@@ -28,6 +28,9 @@ namespace kappa {
 /// chord (the paper's lines and segments, for statistics).
 enum class GridWalk { closest, any, whole };
 
+/// The most levels a cell structure has (grid2's, accel/grid2.h).
+inline constexpr int kMaxCellLevels = 4;
+
 /// What one walk did, counted in registers and handed to the recorder once
 /// at the end.
 struct WalkCounts {
@@ -36,9 +39,12 @@ struct WalkCounts {
   std::uint64_t refs = 0;   ///< sum of Theta_i over them (before mailboxing)
   std::uint64_t tests = 0;  ///< triangle tests made
   std::uint64_t skips = 0;  ///< tests the mailbox avoided
-  /// Of the cells, those of a two-level structure's top level (grid2's empty
-  /// top cells, which hold no triangles); 0 for a structure of one level.
-  std::uint64_t top_cells = 0;
+  /// Per level of a structure of several (grid2; the index is the level):
+  /// the cells, tests and references of that level's leaves. Zero for a
+  /// structure of one level, whose totals above are its level's.
+  std::uint64_t level_cells[kMaxCellLevels] = {};
+  std::uint64_t level_tests[kMaxCellLevels] = {};
+  std::uint64_t level_refs[kMaxCellLevels] = {};
 };
 
 /// The part of the ray a walk covered, for the model's prediction of the

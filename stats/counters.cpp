@@ -10,7 +10,11 @@ ClassTotals& ClassTotals::operator+=(const ClassTotals& o) {
   mailbox_skips += o.mailbox_skips;
   refs += o.refs;
   hits += o.hits;
-  top_cells += o.top_cells;
+  for (int k = 0; k < kMaxCellLevels; ++k) {
+    level_cells[k] += o.level_cells[k];
+    level_tests[k] += o.level_tests[k];
+    level_refs[k] += o.level_refs[k];
+  }
   predicted_fixed += o.predicted_fixed;
   return *this;
 }

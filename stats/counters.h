@@ -26,7 +26,10 @@ struct ClassTotals {
   std::uint64_t mailbox_skips = 0;  ///< tests avoided by the mailbox
   std::uint64_t refs = 0;           ///< sum of Theta_i over visited cells (before mailboxing)
   std::uint64_t hits = 0;           ///< rays that hit something
-  std::uint64_t top_cells = 0;      ///< of the cells, grid2's (empty) top cells (WalkCounts::top_cells)
+  /// Per level of a structure of several (grid2): cells, tests, references (WalkCounts).
+  std::uint64_t level_cells[kMaxCellLevels] = {};
+  std::uint64_t level_tests[kMaxCellLevels] = {};
+  std::uint64_t level_refs[kMaxCellLevels] = {};
   /// Sum over rays of the model's predicted cells (WalkCounts) in 1/1024
   /// units: an integer, so totals do not depend on how threads split rays.
   std::uint64_t predicted_fixed = 0;
@@ -95,7 +98,11 @@ class CellCounters {
       t.refs += w.refs;
       t.tests += w.tests;
       t.mailbox_skips += w.skips;
-      t.top_cells += w.top_cells;
+      for (int k = 0; k < kMaxCellLevels; ++k) {
+        t.level_cells[k] += w.level_cells[k];
+        t.level_tests[k] += w.level_tests[k];
+        t.level_refs[k] += w.level_refs[k];
+      }
       const double predicted = predicted_cells_eq24(segment, m_owner.m_inv_cell);
       t.predicted_fixed += std::uint64_t(predicted * 1024.0 + 0.5);  // >= 0: rounds to nearest
     }

@@ -71,21 +71,23 @@ nlohmann::ordered_json ray_class_section(const ClassSummary& m, std::optional<do
 }
 
 nlohmann::ordered_json level_sections(const ClassTotals& t, const std::vector<CellLayout::Level>& levels) {
-  if (levels.size() != 2) return nullptr;
+  if (levels.size() < 2) return nullptr;
   const double rays = double(t.rays);
-  const std::uint64_t cells[2] = {t.top_cells, t.cells - t.top_cells};
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
-  for (int k = 0; k < 2; ++k) {
-    const CellLayout::Level& level = levels[std::size_t(k)];
+  for (const CellLayout::Level& level : levels) {
+    const int k = level.level;
+    if (k < 0 || k >= kMaxCellLevels) continue;
+    const double cells = double(t.level_cells[k]);
     nlohmann::ordered_json j;
-    j["level"] = level.level;
+    j["level"] = k;
     j["N_c"] = level.N_c;
-    j["cells_per_ray"] = t.rays > 0 ? nlohmann::ordered_json(double(cells[k]) / rays) : nullptr;
-    j["tests_per_ray"] = t.rays > 0 ? nlohmann::ordered_json(k == 1 ? double(t.tests) / rays : 0.0) : nullptr;
-    j["p_tot"] = j["cells_per_ray"];  // sum_i p_i over the level = its mean cells per ray (eq 6)
+    j["cells_per_ray"] = t.rays > 0 ? nlohmann::ordered_json(cells / rays) : nullptr;
+    j["tests_per_ray"] = t.rays > 0 ? nlohmann::ordered_json(double(t.level_tests[k]) / rays) : nullptr;
+    j["p_tot"] = j["cells_per_ray"];  // sum_i p_i over the level's leaves = its mean leaves per ray (eq 6)
+    // Eq 8 over the level's leaves: N_cL refs_L / (cells_L theta_totL); undefined without triangles or visits.
     std::optional<double> kappa;
-    if (k == 1 && cells[1] > 0 && level.theta_tot > 0)
-      kappa = double(level.N_c) * double(t.refs) / (double(cells[1]) * double(level.theta_tot));
+    if (cells > 0 && level.theta_tot > 0)
+      kappa = double(level.N_c) * double(t.level_refs[k]) / (cells * double(level.theta_tot));
     j["kappa"] = number_or_null(kappa);
     out.push_back(std::move(j));
   }

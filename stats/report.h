@@ -43,12 +43,11 @@ nlohmann::ordered_json ray_class_section(const ClassSummary& m, std::optional<do
 /// The same from a cast with counters.
 nlohmann::ordered_json ray_class_section(const CastMeasurement& m, std::optional<double> p_tot_predicted);
 
-/// A ray class's figures per level of a structure of two levels (grid2,
-/// CellLayout::levels): [{level, cells_per_ray, tests_per_ray, p_tot,
-/// kappa}]. Exact from the totals: level 0's cells hold no triangles, so
-/// every test and reference is level 1's, and eq 8 restricted to level 1 is
-/// N_c1 * refs / (cells_1 * theta_tot1); level 0's kappa is null (its
-/// theta_tot is 0). Null for a structure of one level.
+/// A ray class's figures per level of a structure of several (grid2,
+/// CellLayout::levels): [{level, N_c, cells_per_ray, tests_per_ray, p_tot,
+/// kappa}], exact from the totals: eq 8 restricted to level L is
+/// N_cL * refs_L / (cells_L * theta_totL), null where theta_totL is 0. Null
+/// for a structure of one level.
 nlohmann::ordered_json level_sections(const ClassTotals& totals, const std::vector<CellLayout::Level>& levels);
 
 }  // namespace kappa

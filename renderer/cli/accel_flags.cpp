@@ -89,10 +89,10 @@ void add_grid_flags(CLI::App& app, AccelOptions& build, bool model_allowed) {
       ->capture_default_str();
   app.add_option("--grid-density", build.grid_density, "cells per triangle for --grid-res auto (default 32)")
       ->check(finite_number(1e-6, 1e6));
-  app.add_option("--grid2-top-density", build.grid2_top_density, "grid2's top cells per triangle (default 1/8)")
+  app.add_option("--grid2-top-density", build.grid2_top_density, "grid2's top cells per triangle (default 1/2)")
       ->check(finite_number(1e-6, 1e6));
   app.add_option("--grid2-leaf-density", build.grid2_leaf_density,
-                 "grid2's sub-grid cells per triangle of a top cell (default 4)")
+                 "grid2's sub-grid cells per triangle of the cell it refines (default 2)")
       ->check(finite_number(1e-6, 1e6));
   add_grid_max_bytes_flag(app, build);
 }

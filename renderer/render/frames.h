@@ -19,7 +19,7 @@ namespace kappa {
 /// through the interface (render_plain.cpp).
 RenderResult render_plain(const Scene& scene, const UniformGrid& grid, const RenderSettings& settings, Film& film,
                           const ProgressCallback& progress);
-RenderResult render_plain(const Scene& scene, const TwoLevelGrid& grid, const RenderSettings& settings, Film& film,
+RenderResult render_plain(const Scene& scene, const NestedGrid& grid, const RenderSettings& settings, Film& film,
                           const ProgressCallback& progress);
 RenderResult render_plain(const Scene& scene, const Accelerator& accel, const RenderSettings& settings, Film& film,
                           const ProgressCallback& progress);
@@ -28,7 +28,7 @@ RenderResult render_plain(const Scene& scene, const Accelerator& accel, const Re
 /// and in total (render_counting.cpp).
 RenderResult render_counting(const Scene& scene, const UniformGrid& grid, const RenderSettings& settings, Film& film,
                              const ProgressCallback& progress);
-RenderResult render_counting(const Scene& scene, const TwoLevelGrid& grid, const RenderSettings& settings, Film& film,
+RenderResult render_counting(const Scene& scene, const NestedGrid& grid, const RenderSettings& settings, Film& film,
                              const ProgressCallback& progress);
 
 /// Statistics on with another accelerator: per class only the rays, their

@@ -63,7 +63,7 @@ RenderResult render_counting(const Scene& scene, const UniformGrid& grid, const 
   return render_counting_with(scene, grid, settings, film, progress);
 }
 
-RenderResult render_counting(const Scene& scene, const TwoLevelGrid& grid, const RenderSettings& settings, Film& film,
+RenderResult render_counting(const Scene& scene, const NestedGrid& grid, const RenderSettings& settings, Film& film,
                              const ProgressCallback& progress) {
   return render_counting_with(scene, grid, settings, film, progress);
 }

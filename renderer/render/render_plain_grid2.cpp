@@ -1,4 +1,4 @@
-// grid2's stats-off frame: every query calls TwoLevelGrid directly (a final
+// grid2's stats-off frame: every query calls NestedGrid directly (a final
 // class), alone in its translation unit as the uniform grid's frame is.
 #include "accel/grid2_traverse.h"
 #include "renderer/render/frames.h"
@@ -7,9 +7,9 @@
 
 namespace kappa {
 
-RenderResult render_plain(const Scene& scene, const TwoLevelGrid& grid, const RenderSettings& settings, Film& film,
+RenderResult render_plain(const Scene& scene, const NestedGrid& grid, const RenderSettings& settings, Film& film,
                           const ProgressCallback& progress) {
-  return render_tiles(scene, settings, film, progress, [&] { return PlainQueries<TwoLevelGrid>{grid}; });
+  return render_tiles(scene, settings, film, progress, [&] { return PlainQueries<NestedGrid>{grid}; });
 }
 
 }  // namespace kappa

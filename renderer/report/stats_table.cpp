@@ -62,9 +62,9 @@ std::string stats_table(const nlohmann::ordered_json& report) {
 
 std::string grid_occupancy_line(const nlohmann::ordered_json& grid) {
   if (grid.contains("levels"))  // grid2: its top grid and leaves (no eq 19 over cells of differing sizes)
-    return row("grid2 top %s x %s x %s (%s occupied): N_c %s leaves, N %s, theta_tot %s, empty %s\n",
+    return row("grid2 top %s x %s x %s (%s cells refined): N_c %s leaves in %zu levels, N %s, theta_tot %s, empty %s\n",
                grid["top_res"][0].dump().c_str(), grid["top_res"][1].dump().c_str(), grid["top_res"][2].dump().c_str(),
-               grid["top_occupied"].dump().c_str(), grid["N_c"].dump().c_str(), grid["N"].dump().c_str(),
+               grid["refined"].dump().c_str(), grid["N_c"].dump().c_str(), grid["levels"].size(), grid["N"].dump().c_str(),
                grid["theta_tot"].dump().c_str(), number(grid["empty_fraction"], "%.3f").c_str());
   return row("grid %s x %s x %s: N_c %s, N %s, theta_tot %s (eq19 %s, eq21 %s), empty %s\n",
              grid["res"][0].dump().c_str(), grid["res"][1].dump().c_str(), grid["res"][2].dump().c_str(),

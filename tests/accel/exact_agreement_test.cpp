@@ -39,7 +39,7 @@ std::vector<ExactCase> exact_cases() {
       Grid2Options options;
       options.top_density = top;
       options.leaf_density = leaf;
-      return std::make_unique<TwoLevelGrid>(tris, options);
+      return std::make_unique<NestedGrid>(tris, options);
     };
   };
   return {
@@ -48,7 +48,7 @@ std::vector<ExactCase> exact_cases() {
        }},
       {"grid2", grid2(kDefaultGrid2TopDensity, kDefaultGrid2LeafDensity)},
       // One top cell: the whole scene one sub-grid, entered once per ray.
-      {"grid2_one_top_cell", grid2(1e-6, 32)},
+      {"grid2_one_top_cell", grid2(1e-6, 8)},
       // Fine top cells (one per triangle), each a sub-grid of several cells per triangle.
       {"grid2_fine", grid2(1, 4)},
   };

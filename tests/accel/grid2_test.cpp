@@ -1,6 +1,6 @@
 // grid2's own cases: its leaves tile its box and hold what they should, its
-// walk reports every leaf it crosses once and in order, its sub-grids adapt
-// to where the triangles are, and its bounds refuse what would explode.
+// walk reports every leaf it crosses once and in order, its levels refine
+// where the triangles are, and its bounds refuse what would explode.
 // Its agreement with naive is the suite over every exact accelerator
 // (exact_agreement_test.cpp).
 #include "accel/grid2.h"
@@ -24,12 +24,12 @@
 namespace kappa {
 namespace {
 
-TwoLevelGrid make_grid2(std::span<const Triangle> tris, double top = kDefaultGrid2TopDensity,
+NestedGrid make_grid2(std::span<const Triangle> tris, double top = kDefaultGrid2TopDensity,
                         double leaf = kDefaultGrid2LeafDensity) {
   Grid2Options options;
   options.top_density = top;
   options.leaf_density = leaf;
-  return TwoLevelGrid(tris, options);
+  return NestedGrid(tris, options);
 }
 
 /// A dense sphere of `rings` x 2 rings triangles in a corner of an open box
@@ -43,21 +43,18 @@ std::vector<Triangle> small_sphere_in_a_large_box(int rings) {
 
 TEST(Grid2, LeavesTileTheBoxAndHoldTheirOccupancy) {
   const auto tris = small_sphere_in_a_large_box(24);
-  const TwoLevelGrid grid = make_grid2(tris);
+  const NestedGrid grid = make_grid2(tris);
   const CellLayout& cells = *grid.cells();
   const Grid2Info& info = grid.info();
   ASSERT_EQ(cells.cell_count(), info.leaves);
   const auto theta = cells.occupancies();
-  std::uint64_t total = 0, level_cells[2] = {0, 0}, level_theta[2] = {0, 0};
+  std::uint64_t total = 0, level_cells[kMaxGrid2Levels] = {}, level_theta[kMaxGrid2Levels] = {};
   double volume = 0;
   for (std::uint64_t i = 0; i < cells.cell_count(); ++i) {
     EXPECT_EQ(theta[i], grid.leaf(i).size());
     total += theta[i];
     const int level = cells.cell_level(i);
-    ASSERT_TRUE(level == 0 || level == 1);
-    if (level == 0) {
-      EXPECT_EQ(theta[i], 0u) << "a level-0 leaf is an empty top cell";
-    }
+    ASSERT_TRUE(level >= 0 && level < info.levels) << level;
     ++level_cells[level];
     level_theta[level] += theta[i];
     const CellBox b = cells.cell_box(i);
@@ -65,22 +62,26 @@ TEST(Grid2, LeavesTileTheBoxAndHoldTheirOccupancy) {
     volume += e.x * e.y * e.z;
   }
   EXPECT_EQ(total, info.theta_tot);
-  for (int level = 0; level < 2; ++level) {
-    EXPECT_EQ(info.levels[level].N_c, level_cells[level]);
-    EXPECT_EQ(info.levels[level].theta_tot, level_theta[level]);
+  ASSERT_EQ(cells.levels().size(), std::size_t(info.levels));
+  std::uint64_t bytes = 0;
+  for (int level = 0; level < info.levels; ++level) {
+    EXPECT_EQ(info.level[level].N_c, level_cells[level]);
+    EXPECT_EQ(info.level[level].theta_tot, level_theta[level]);
+    EXPECT_EQ(cells.levels()[std::size_t(level)].N_c, level_cells[level]);
+    bytes += info.level[level].bytes;
   }
   EXPECT_GT(level_cells[0], 0u);  // the box's inside is mostly empty top cells
   EXPECT_GT(level_cells[1], level_cells[0]);  // the sphere's top cells are split finely
   const Vec3d e = cells.bounds().hi - cells.bounds().lo;
   EXPECT_NEAR(volume, e.x * e.y * e.z, 1e-9 * e.x * e.y * e.z);
-  EXPECT_EQ(info.levels[0].bytes + info.levels[1].bytes, info.bytes);
+  EXPECT_EQ(bytes, info.bytes);
   EXPECT_FALSE(cells.uniform_cell_size());
 }
 
 TEST(Grid2, LeafListsMatchABruteForceOverlapTestInEveryLeaf) {
   const auto tris = test::random_soup(400, 7, 0.2f);
   for (const auto& [top, leaf] : std::vector<std::pair<double, double>>{{1.0 / 8, 4}, {1e-6, 8}, {1, 2}}) {
-    const TwoLevelGrid grid = make_grid2(tris, top, leaf);
+    const NestedGrid grid = make_grid2(tris, top, leaf);
     const double m = grid.info().top.margin;
     const Vec3d margin{m, m, m};
     std::uint64_t empty = 0;
@@ -132,7 +133,7 @@ bool neighbours(const CellBox& a, const CellBox& b) {
 
 TEST(Grid2, WalkReportsEveryLeafItsSegmentCrossesOnceInOrder) {
   const auto tris = small_sphere_in_a_large_box(12);
-  const TwoLevelGrid grid = make_grid2(tris, 1.0 / 4, 8);
+  const NestedGrid grid = make_grid2(tris, 1.0 / 4, 8);
   const CellLayout& cells = *grid.cells();
   const CellBox bounds = cells.bounds();
   std::vector<Ray> rays = uniform_lines(bounds.lo, bounds.hi, 200, 3);
@@ -186,7 +187,7 @@ TEST(Grid2, EmptySpaceIsCrossedOneTopCellAtATime) {
   // A ray through the empty middle of the box, far from the sphere: its
   // walk visits top cells only, at most one per top plane it crosses.
   const auto tris = small_sphere_in_a_large_box(48);
-  const TwoLevelGrid grid = make_grid2(tris);
+  const NestedGrid grid = make_grid2(tris);
   const GridResolution& top = grid.info().top.resolution;
   LeafRecorder rec;
   grid.walk_whole(Ray{{20, 0.5f, 20.5f}, {0, 1, 0}}, rec);
@@ -197,7 +198,35 @@ TEST(Grid2, EmptySpaceIsCrossedOneTopCellAtATime) {
   // The walls it starts and ends in are sub-grids; everything between is empty.
   EXPECT_GE(level0 + 4, rec.cells.size()) << top.to_string();
   // The sphere's top cells are split into many leaves.
-  EXPECT_GT(grid.info().levels[1].N_c, 8 * grid.info().top_occupied) << grid.resolution_text();
+  EXPECT_GT(grid.info().level[1].N_c + grid.info().level[2].N_c, 8 * grid.info().refined) << grid.resolution_text();
+}
+
+TEST(Grid2, ASmallDenseObjectInALargeBoxIsRefinedUntilRaysTestFewTriangles) {
+  // A sphere of radius 0.05 and 4,608 triangles in an open box of side 20
+  // (the teapot in a stadium): it fits in one top cell, and in a few cells
+  // of that cell's sub-grid, which the deeper levels refine again.
+  Scene scene;
+  test::add_sphere(scene, {10, 10, 10}, 0.05f, 48, 96, false, 0);
+  test::add_box(scene, {0, 0, 0}, {20, 20, 20}, true, 0);
+  const NestedGrid grid = make_grid2(scene.triangles);
+  EXPECT_GE(grid.info().levels, 3) << grid.resolution_text();
+  std::mt19937 rng(9);
+  std::normal_distribution<float> n;
+  std::uniform_real_distribution<float> u(-0.04f, 0.04f);
+  std::uint64_t tests = 0, hits = 0;
+  const int rays = 500;
+  for (int k = 0; k < rays; ++k) {
+    // From a random point of the box's inside towards the sphere's middle.
+    const Vec3f from{10 + 9 * std::tanh(n(rng)), 10 + 9 * std::tanh(n(rng)), 10 + 9 * std::tanh(n(rng))};
+    const Vec3f to{10 + u(rng), 10 + u(rng), 10 + u(rng)};
+    LeafRecorder rec;
+    hits += grid.closest_hit(Ray{from, to - from}, rec).has_value();
+    tests += rec.tests;
+  }
+  EXPECT_EQ(hits, std::uint64_t(rays));
+  // Two levels alone leave the sphere in a few cells of 4,608 / 8 triangles and more.
+  EXPECT_LT(double(tests) / rays, 60.0) << grid.resolution_text();
+  test::expect_agreement(scene.triangles, grid, test::ray_families(scene.triangles, grid, 100, 4));
 }
 
 TEST(Grid2, CopiesOfOneLargeTriangleStayBounded) {
@@ -206,7 +235,7 @@ TEST(Grid2, CopiesOfOneLargeTriangleStayBounded) {
   // is, and each sub-grid is lowered while eq 19 predicts an explosion.
   const Triangle big{{-1, -1, -1}, {1, -1, 1}, {0, 1, 0}};
   const std::vector<Triangle> copies(10000, big);
-  const TwoLevelGrid grid = make_grid2(copies);
+  const NestedGrid grid = make_grid2(copies);
   const Grid2Info& info = grid.info();
   EXPECT_LT(double(info.theta_tot), 40.0 * 10000 + double(info.leaves)) << grid.resolution_text();
   test::expect_agreement(copies, grid, test::ray_families(copies, grid, 30, 3));
@@ -217,7 +246,7 @@ TEST(Grid2, MemoryLimitIsAClearError) {
   Grid2Options options;
   options.max_bytes = 4096;
   try {
-    TwoLevelGrid grid(tris, options);
+    NestedGrid grid(tris, options);
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("--grid-max-bytes"), std::string::npos) << e.what();
@@ -226,24 +255,30 @@ TEST(Grid2, MemoryLimitIsAClearError) {
 }
 
 TEST(Grid2, IsVisitedAsItsOwnTypeAndReportsItsLevels) {
-  static_assert(CellWalker<TwoLevelGrid>);
+  static_assert(CellWalker<NestedGrid>);
   const auto tris = test::random_soup(300, 29);
   const auto accel = make_accelerator("grid2", tris);
   const bool own_type = visit_accelerator(*accel, [](const auto& a) {
-    return std::is_same_v<std::decay_t<decltype(a)>, TwoLevelGrid>;
+    return std::is_same_v<std::decay_t<decltype(a)>, NestedGrid>;
   });
   EXPECT_TRUE(own_type);
   ASSERT_NE(accel->cells(), nullptr);
   const nlohmann::ordered_json j = accel->report_section();
-  ASSERT_EQ(j["levels"].size(), 2u);
-  EXPECT_EQ(j["levels"][0]["N_c"].get<std::uint64_t>() + j["levels"][1]["N_c"].get<std::uint64_t>(),
-            j["N_c"].get<std::uint64_t>());
-  EXPECT_EQ(j["levels"][1]["theta_tot"], j["theta_tot"]);
+  ASSERT_GE(j["levels"].size(), 2u);
+  std::uint64_t leaves = 0, theta = 0, bytes = 0;
+  for (const auto& level : j["levels"]) {
+    leaves += level["N_c"].get<std::uint64_t>();
+    theta += level["theta_tot"].get<std::uint64_t>();
+    bytes += level["bytes"].get<std::uint64_t>();
+  }
+  EXPECT_EQ(leaves, j["N_c"].get<std::uint64_t>());
+  EXPECT_EQ(theta, j["theta_tot"].get<std::uint64_t>());
+  EXPECT_EQ(bytes, j["bytes"].get<std::uint64_t>());
   // The options reach it from the command line's settings.
   AccelOptions build;
   build.grid2_top_density = 1e-6;
   const auto one_top = make_accelerator("grid2", tris, build);
-  EXPECT_EQ(static_cast<const TwoLevelGrid&>(*one_top).info().top.resolution.cells(), 1u);
+  EXPECT_EQ(static_cast<const NestedGrid&>(*one_top).info().top.resolution.cells(), 1u);
 }
 
 }  // namespace
