@@ -82,6 +82,9 @@ GridResolution sub_resolution(const Vec3d& cell, double n, double leaf_density, 
 /// refined node's children contiguous), and its leaves' lists in leaf order.
 /// Indices are local; layout() makes them global.
 struct LocalTree {
+  /// A top cell that stays one leaf (most of them): nothing below, its list
+  /// is its top list, and none of the vectors is allocated.
+  bool top_leaf = false;
   std::vector<Node> nodes;
   std::vector<std::uint32_t> leaf_sizes;
   std::vector<std::uint8_t> leaf_levels;
@@ -123,16 +126,20 @@ class TreeBuilder {
     sub.lo = cell.lo, sub.hi = cell.hi;
     sub.cell_size = Vec3d{sub_cell_size(cell.size.x, r.nx), sub_cell_size(cell.size.y, r.ny), sub_cell_size(cell.size.z, r.nz)};
     const Vec3d inv{1.0 / sub.cell_size.x, 1.0 / sub.cell_size.y, 1.0 / sub.cell_size.z};
-    // The children's lists: counted, then filled in id order (so ascending).
+    // The children's lists: one overlap pass into (child, id) pairs, in id
+    // order, then a counting sort by child (each list ascending). The pair
+    // buffer is the builder's, reused: it is consumed before the recursion.
     const std::uint64_t children = r.cells();
-    std::vector<std::uint32_t> offsets(children + 1, 0);
+    m_pairs.clear();
     for (TriangleId id : ids)
-      for_each_overlapped_cell(sub, inv, m_triangles[id], [&](std::uint64_t c) { ++offsets[c + 1]; });
+      for_each_overlapped_cell(sub, inv, m_triangles[id],
+                               [&](std::uint64_t c) { m_pairs.push_back({std::uint32_t(c), id}); });
+    std::vector<std::uint32_t> offsets(children + 1, 0);
+    for (const auto& [c, id] : m_pairs) ++offsets[c + 1];
     for (std::uint64_t c = 0; c < children; ++c) offsets[c + 1] += offsets[c];
     std::vector<TriangleId> lists(offsets[children]);
     std::vector<std::uint32_t> cursor(offsets.begin(), offsets.end() - 1);
-    for (TriangleId id : ids)
-      for_each_overlapped_cell(sub, inv, m_triangles[id], [&](std::uint64_t c) { lists[cursor[c]++] = id; });
+    for (const auto& [c, id] : m_pairs) lists[cursor[c]++] = id;
 
     const std::size_t first = m_tree.nodes.size();
     m_tree.nodes.resize(first + children);
@@ -169,6 +176,7 @@ class TreeBuilder {
   std::span<const Triangle> m_triangles;
   double m_margin, m_leaf_density;
   LocalTree& m_tree;
+  std::vector<std::pair<std::uint32_t, TriangleId>> m_pairs;
 };
 
 }  // namespace
@@ -246,21 +254,25 @@ NestedGrid::NestedGrid(std::span<const Triangle> triangles, const Grid2Options& 
       }
       cell.size = g.cell_size;
       LocalTree& tree = trees[c];
+      if (ids.size() <= kGrid2LeafTriangles) {
+        tree.top_leaf = true;
+        continue;
+      }
       tree.nodes.resize(1);
       TreeBuilder(triangles, g.margin, options.leaf_density, tree).build(0, cell, ids, 0);
     }
     advance(progress, range.size());
   });
-  std::vector<TriangleId>().swap(top_lists);
 
   // Where each tree goes: its non-root nodes after the top cells', its
   // leaves and references after the previous trees'.
   std::vector<std::uint64_t> node_base(top_cells + 1), leaf_base(top_cells + 1), ref_base(top_cells + 1);
   node_base[0] = top_cells, leaf_base[0] = 0, ref_base[0] = 0;
   for (std::uint64_t c = 0; c < top_cells; ++c) {
-    node_base[c + 1] = node_base[c] + trees[c].nodes.size() - 1;
-    leaf_base[c + 1] = leaf_base[c] + trees[c].leaf_sizes.size();
-    ref_base[c + 1] = ref_base[c] + trees[c].refs.size();
+    const bool top_leaf = trees[c].top_leaf;
+    node_base[c + 1] = node_base[c] + (top_leaf ? 0 : trees[c].nodes.size() - 1);
+    leaf_base[c + 1] = leaf_base[c] + (top_leaf ? 1 : trees[c].leaf_sizes.size());
+    ref_base[c + 1] = ref_base[c] + (top_leaf ? top_offsets[c + 1] - top_offsets[c] : trees[c].refs.size());
     for (int k = 0; k < kMaxGrid2Levels; ++k) {
       m_info.refined += trees[c].refined[k];
       m_info.level[k].bytes += trees[c].refined[k] * sizeof(Node);  // a refined cell's node is its level's
@@ -279,6 +291,15 @@ NestedGrid::NestedGrid(std::span<const Triangle> triangles, const Grid2Options& 
   m_leaf_level.resize(leaves);
   kappa::parallel_for(std::uint64_t(0), top_cells, [&](std::uint64_t c) {
     const LocalTree& tree = trees[c];
+    if (tree.top_leaf) {
+      const std::uint64_t first = top_offsets[c], n = top_offsets[c + 1] - first;
+      m_nodes[c].index = std::uint32_t(leaf_base[c]);
+      m_nodes[c].kind = n == 0 ? NestedGrid::empty : NestedGrid::list;
+      m_offsets[leaf_base[c]] = std::uint32_t(ref_base[c]);
+      m_leaf_level[leaf_base[c]] = 0;
+      std::copy_n(top_lists.begin() + std::ptrdiff_t(first), n, m_refs.begin() + std::ptrdiff_t(ref_base[c]));
+      return;
+    }
     const auto global = [&](Node n) {
       n.index = std::uint32_t(n.kind == NestedGrid::refined ? node_base[c] + n.index - 1 : leaf_base[c] + n.index);
       return n;
@@ -294,6 +315,8 @@ NestedGrid::NestedGrid(std::span<const Triangle> triangles, const Grid2Options& 
     std::copy(tree.refs.begin(), tree.refs.end(), m_refs.begin() + std::ptrdiff_t(ref_base[c]));
   });
   m_offsets[leaves] = std::uint32_t(refs);
+  std::vector<TriangleId>().swap(top_lists);
+  std::vector<LocalTree>().swap(trees);
 
   m_info.leaves = leaves;
   m_info.theta_tot = refs;

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# The grid2 issue's table: per shared scene, one `kappa bench` run with grid,
+# grid2 and Embree taking turns on the same camera, bounce and shadow rays
+# (1 thread, REPEAT repeats, the median of each), printing grid / Embree,
+# grid2 / Embree and grid2 / grid per class (same-run ratios) and each
+# structure's build time and bytes, with `uptime` before and after.
+#
+#   tools/grid2_table.sh [SCENE.json ...]     (default: every ../shared/scenes/*/scene*.json)
+#
+# Environment: N (rays per class, default 65536), REPEAT (default 5), THREADS (default 1).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+kappa="${KAPPA:-build/kappa}"
+n="${N:-65536}" repeat="${REPEAT:-5}" threads="${THREADS:-1}"
+scenes=("$@")
+if [ ${#scenes[@]} -eq 0 ]; then
+  for s in ../shared/scenes/*/scene*.json; do
+    case "$s" in */malformed/*) continue ;; esac
+    [ -f "$s" ] && scenes+=("$s")
+  done
+fi
+[ ${#scenes[@]} -gt 0 ] || { echo "grid2_table.sh: no scenes (../shared/scenes is absent)" >&2; exit 2; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+echo "uptime before: $(uptime)"
+echo
+echo "| scene | grid ÷ Embree (cam, bnc, shd) | grid2 ÷ Embree (cam, bnc, shd) | grid2 ÷ grid (cam, bnc, shd) | build s grid / grid2 | MB grid / grid2 |"
+echo "|---|---|---|---|---|---|"
+for scene in "${scenes[@]}"; do
+  "$kappa" bench "$scene" --accel grid,grid2,embree --rays camera,bounce,shadow --threads "$threads" \
+    --repeat "$repeat" --n "$n" --json "$tmp/b.json" > /dev/null 2> "$tmp/err" || { cat "$tmp/err" >&2; exit 1; }
+  /usr/bin/python3 - "$tmp/b.json" "$scene" "$threads" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+t = int(sys.argv[3])
+rows = {(r["accel"], r["rays"]): r for r in j["results"] if r["threads"] == t}
+classes = ["camera", "bounce", "shadow"]
+def ratios(a, b):
+    return ", ".join("%.3f" % (rows[(a, c)]["mrays_per_s_median"] / rows[(b, c)]["mrays_per_s_median"]) for c in classes)
+acc = j["accels"]
+name = sys.argv[2].split("/scenes/")[-1].replace(".json", "")
+print("| %s | %s | %s | %s | %.3f / %.3f | %.1f / %.1f |" % (
+    name, ratios("grid", "embree"), ratios("grid2", "embree"), ratios("grid2", "grid"),
+    acc["grid"]["build_s"], acc["grid2"]["build_s"], acc["grid"]["bytes"] / 2**20, acc["grid2"]["bytes"] / 2**20))
+PY
+done
+echo
+echo "uptime after: $(uptime)"
