@@ -70,6 +70,17 @@ struct OccupancyModel {
 /// below (Theta_tot / N is 1.5 to 5 at lambda = 32 on ../shared/scenes).
 inline constexpr double kThetaBoundPerTriangle = 16.0;
 
+/// The ids of the triangles a grid holds (usable_triangle: finite, of
+/// non-zero area), ascending.
+std::vector<TriangleId> usable_triangle_ids(std::span<const Triangle> triangles);
+
+/// The resolution --grid-res auto gives: density * N near-cubic cells over
+/// `extent`, never more than 32-bit offsets or max_bytes allow (4 bytes a
+/// cell, and room for as many again of references), then bounded_resolution.
+/// The uniform grid's, and grid2's top grid.
+GridResolution density_resolution(std::span<const Triangle> triangles, const Vec3d& extent, double density,
+                                  double N, std::uint64_t max_bytes);
+
 /// The most cells at or below `resolution`'s (near-cubic, by
 /// choose_resolution over `extent`) whose predicted Theta_tot keeps within the
 /// bound; `resolution` itself when it does.

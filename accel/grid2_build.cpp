@@ -185,10 +185,7 @@ NestedGrid::NestedGrid(std::span<const Triangle> triangles, const Grid2Options& 
     : m_triangles(triangles) {
   const auto start = std::chrono::steady_clock::now();
   if (triangles.size() >= std::size_t(kNoTriangle)) throw InputError("grid2: more than 2^32 - 1 triangles");
-  std::vector<TriangleId> usable_ids;
-  usable_ids.reserve(triangles.size());
-  for (TriangleId i = 0; i < TriangleId(triangles.size()); ++i)
-    if (usable_triangle(triangles[i])) usable_ids.push_back(i);
+  const std::vector<TriangleId> usable_ids = usable_triangle_ids(triangles);
   m_info.N = usable_ids.size();
   m_info.degenerate = triangles.size() - usable_ids.size();
   GridInfo& g = m_info.top;
@@ -197,9 +194,7 @@ NestedGrid::NestedGrid(std::span<const Triangle> triangles, const Grid2Options& 
   const Vec3d extent = g.hi - g.lo;
 
   // The top grid: top_density * N cells, bounded as the uniform grid's are.
-  const double cap = std::min(double(std::numeric_limits<std::uint32_t>::max() - 2), double(options.max_bytes) / 16.0);
-  g.resolution = choose_resolution(extent, std::clamp(options.top_density * double(m_info.N), 1.0, std::max(1.0, cap)));
-  g.resolution = bounded_resolution(OccupancyModel(triangles), extent, g.resolution);
+  g.resolution = density_resolution(triangles, extent, options.top_density, double(m_info.N), options.max_bytes);
   const std::uint64_t top_cells = g.resolution.cells();
   for (int a = 0; a < 3; ++a) {
     const double l = extent[a] / g.resolution[a];

@@ -90,15 +90,27 @@ GridResolution bounded_resolution(const OccupancyModel& occupancy, const Vec3d& 
   return resolution;
 }
 
+std::vector<TriangleId> usable_triangle_ids(std::span<const Triangle> triangles) {
+  std::vector<TriangleId> ids;
+  ids.reserve(triangles.size());
+  for (TriangleId i = 0; i < TriangleId(triangles.size()); ++i)
+    if (usable_triangle(triangles[i])) ids.push_back(i);
+  return ids;
+}
+
+GridResolution density_resolution(std::span<const Triangle> triangles, const Vec3d& extent, double density,
+                                  double N, std::uint64_t max_bytes) {
+  const double cap = std::min(double(std::numeric_limits<std::uint32_t>::max() - 2), double(max_bytes) / 16.0);
+  const GridResolution r = choose_resolution(extent, std::clamp(density * N, 1.0, std::max(1.0, cap)));
+  return bounded_resolution(OccupancyModel(triangles), extent, r);
+}
+
 UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions& options, TaskProgress* progress)
     : m_triangles(triangles) {
   const auto start = std::chrono::steady_clock::now();
   if (triangles.size() >= std::size_t(kNoTriangle)) throw InputError("grid: more than 2^32 - 1 triangles");
 
-  std::vector<TriangleId> usable_ids;
-  usable_ids.reserve(triangles.size());
-  for (TriangleId i = 0; i < TriangleId(triangles.size()); ++i)
-    if (usable_triangle(triangles[i])) usable_ids.push_back(i);
+  const std::vector<TriangleId> usable_ids = usable_triangle_ids(triangles);
   m_info.N = usable_ids.size();
   m_info.degenerate = triangles.size() - usable_ids.size();
   const GridBox box = grid_box(triangles);
@@ -114,11 +126,7 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
   if (options.resolution) {
     m_info.resolution = *options.resolution;
   } else {
-    // lambda * N, but never more cells than 32-bit offsets or the memory
-    // budget allow (offsets, 4 bytes a cell, and room for as many bytes again of references).
-    const double cap = std::min(double(std::numeric_limits<std::uint32_t>::max() - 2), double(options.max_bytes) / 16.0);
-    m_info.resolution = choose_resolution(extent, std::clamp(options.density * double(m_info.N), 1.0, std::max(1.0, cap)));
-    m_info.resolution = bounded_resolution(OccupancyModel(triangles), extent, m_info.resolution);
+    m_info.resolution = density_resolution(triangles, extent, options.density, double(m_info.N), options.max_bytes);
   }
   const std::uint64_t cells = m_info.resolution.cells();
   // Offsets, with the occupancy bits.

@@ -128,4 +128,20 @@ inline Rays ray_families(std::span<const Triangle> tris, const Accelerator& acce
   return rays;
 }
 
+/// Rays from random points of [-3, 3]^3 aimed exactly at the vertices and
+/// edge midpoints of `tris`: they meet several triangles at (nearly) equal
+/// t, so the tie rule must decide, not the order in which cells are tested.
+inline Rays rays_at_vertices(std::span<const Triangle> tris, std::size_t n, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-3.0f, 3.0f);
+  Rays rays;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Triangle& t = tris[i % tris.size()];
+    const Vec3f target = i % 3 == 0 ? t.v0 : i % 3 == 1 ? t.v1 : (t.v1 + t.v2) * 0.5f;
+    const Vec3f o{u(rng), u(rng), u(rng)};
+    if (!(target == o)) rays.push_back({o, target - o});
+  }
+  return rays;
+}
+
 }  // namespace kappa::test
