@@ -44,7 +44,8 @@ void check_exr_header(const std::filesystem::path& path) {
   const std::uint64_t size = std::uint64_t(in.tellg());
   in.seekg(0);
   unsigned char start[8];
-  if (!in.read(reinterpret_cast<char*>(start), 8) || little_endian(start) != kMagic) return;
+  if (!in.read(reinterpret_cast<char*>(start), 8) || little_endian(start) != kMagic)
+    fail(path, 0, "not an OpenEXR file (it does not start with OpenEXR's magic number 76 2f 31 01)");
   const std::uint32_t flags = little_endian(start + 4) & ~0xffu;
   const std::size_t longest = (flags & kLongNames) ? 255 : 31;
   const auto refuse = [&](const std::string& why) { fail(path, 0, "not a valid OpenEXR header: " + why); };

@@ -15,8 +15,8 @@ namespace kappa {
 /// string vector's strings; the declared size for the rest), up to the null
 /// byte that ends a header (every header of a multi-part file) -- and throws
 /// InputError naming the file when any of it would read past the file's end
-/// or a name or type runs past the longest OpenEXR allows. A file without OpenEXR's magic
-/// number is left to OpenImageIO, which says what it is.
+/// or a name or type runs past the longest OpenEXR allows, or the file does
+/// not start with OpenEXR's magic number.
 void check_exr_header(const std::filesystem::path& path);
 
 }  // namespace kappa

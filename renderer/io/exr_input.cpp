@@ -34,8 +34,13 @@ ReferenceImage read_reference(const std::filesystem::path& path, std::optional<F
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, 0, "reference image not found");
   check_exr_header(path);  // before OpenEXR allocates what a header declares
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) fail(path, 0, "cannot read the reference image: " + OIIO::geterror());
+  // OpenEXR's reader only: ImageInput::open would hand a file its reader
+  // refuses to every other plugin in turn (TIFF, libraw, ffmpeg, ...), whose
+  // parsers a reference never needs (a PPM named .exr was read as one).
+  auto in = OIIO::ImageInput::create("openexr");
+  OIIO::ImageSpec opened;
+  if (!in || !in->open(path.string(), opened))
+    fail(path, 0, "cannot read the reference image: " + (in ? in->geterror() : OIIO::geterror()));
   const OIIO::ImageSpec spec = in->spec();
   const int r = channel_index(spec, "R"), g = channel_index(spec, "G"), b = channel_index(spec, "B");
   if (r < 0 || g < 0 || b < 0) fail(path, 0, "the reference image has no R, G and B channels");

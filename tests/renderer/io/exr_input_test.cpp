@@ -112,6 +112,24 @@ TEST(Reference, AnAttributeLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
   EXPECT_EQ(read_reference(dir / "small.exr").width, 4);
 }
 
+TEST(Reference, AnImageOfAnotherFormatIsRefusedWhateverItsName) {
+  // OpenImageIO's ImageInput::open hands a file the OpenEXR reader refuses to
+  // every other plugin (PPM, TIFF, libraw, ffmpeg, ...): a PPM named .exr was
+  // read as a reference. Only OpenEXR's reader may see a reference's bytes.
+  test::TempDir dir;
+  const std::string ppm = std::string("P6\n2 2\n255\n") + std::string(12, '\x40');
+  for (const char* name : {"image.exr", "image.ppm"}) {
+    test::write_file(dir / name, ppm);
+    try {
+      read_reference(dir / name);
+      ADD_FAILURE() << name << " was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string(name) + ": not an OpenEXR file"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(Reference, TheUnpatchedImageIsRead) {
   test::TempDir dir;
   const auto path = dir / "small.exr";
