@@ -7,9 +7,6 @@
 #include "accel/input_file.h"
 
 namespace kappa {
-namespace {
-
-}  // namespace
 
 Calibration fit_calibration(std::span<const TimedLoad> measurements) {
   Calibration c;
@@ -19,8 +16,44 @@ Calibration fit_calibration(std::span<const TimedLoad> measurements) {
   return c;
 }
 
-nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> measurements,
-                               std::span<const TimedBuild> builds, std::span<const TimedNaiveLoad> naive) {
+namespace {
+
+nlohmann::ordered_json load_rows(std::span<const TimedLoad> measurements, const TimeModel* eq10, const TimeModel& extended) {
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (const TimedLoad& m : measurements) {
+    const double r = m.load.rays;
+    nlohmann::ordered_json row = {{"label", m.label},
+                                  {"class", kRenderClassNames[m.load.ray_class]},
+                                  {"rays", r},
+                                  {"ns_per_ray", m.seconds / r * 1e9},
+                                  {"cells_per_ray", m.load.cells / r},
+                                  {"occupied_per_ray", m.load.occupied / r},
+                                  {"tests_per_ray", m.load.tests / r},
+                                  {"skips_per_ray", m.load.skips / r},
+                                  {"hit_fraction", m.load.hits / r},
+                                  {"working_set_bytes", m.load.working_set_bytes}};
+    if (eq10) row["eq10_ns_per_ray"] = eq10->seconds(m.load) / r * 1e9;
+    row["extended_ns_per_ray"] = extended.seconds(m.load) / r * 1e9;
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+nlohmann::ordered_json build_rows(std::span<const TimedBuild> builds, const BuildModel& model) {
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (const TimedBuild& b : builds)
+    rows.push_back({{"label", b.label},
+                    {"N", b.N},
+                    {"theta_tot", b.theta_tot},
+                    {"N_c", b.cells},
+                    {"seconds", b.seconds},
+                    {"predicted_s", model.seconds(b.N, b.theta_tot, b.cells, model.threads)}});
+  return rows;
+}
+
+}  // namespace
+
+nlohmann::ordered_json to_json(const Calibration& c, const CalibrationMeasurements& measured) {
   nlohmann::ordered_json j;
   j["format"] = kCalibrationFormat;
   j["machine"] = c.machine;
@@ -30,37 +63,12 @@ nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> 
   j["extended"] = to_json(c.extended);
   j["build"] = to_json(c.build);
   j["naive"] = to_json(c.naive);
-  if (!measurements.empty()) {
-    j["measurements"] = nlohmann::ordered_json::array();
-    for (const TimedLoad& m : measurements) {
-      const double r = m.load.rays;
-      j["measurements"].push_back({{"label", m.label},
-                                   {"class", kRenderClassNames[m.load.ray_class]},
-                                   {"rays", r},
-                                   {"ns_per_ray", m.seconds / r * 1e9},
-                                   {"cells_per_ray", m.load.cells / r},
-                                   {"occupied_per_ray", m.load.occupied / r},
-                                   {"tests_per_ray", m.load.tests / r},
-                                   {"skips_per_ray", m.load.skips / r},
-                                   {"hit_fraction", m.load.hits / r},
-                                   {"working_set_bytes", m.load.working_set_bytes},
-                                   {"eq10_ns_per_ray", c.eq10.seconds(m.load) / r * 1e9},
-                                   {"extended_ns_per_ray", c.extended.seconds(m.load) / r * 1e9}});
-    }
-  }
-  if (!builds.empty()) {
-    j["builds"] = nlohmann::ordered_json::array();
-    for (const TimedBuild& b : builds)
-      j["builds"].push_back({{"label", b.label},
-                             {"N", b.N},
-                             {"theta_tot", b.theta_tot},
-                             {"N_c", b.cells},
-                             {"seconds", b.seconds},
-                             {"predicted_s", c.build.seconds(b.N, b.theta_tot, b.cells, c.build.threads)}});
-  }
-  if (!naive.empty()) {
+  j["grid2"] = to_json(c.grid2);
+  if (!measured.grid.empty()) j["measurements"] = load_rows(measured.grid, &c.eq10, c.extended);
+  if (!measured.builds.empty()) j["builds"] = build_rows(measured.builds, c.build);
+  if (!measured.naive.empty()) {
     j["naive_measurements"] = nlohmann::ordered_json::array();
-    for (const TimedNaiveLoad& m : naive)
+    for (const TimedNaiveLoad& m : measured.naive)
       j["naive_measurements"].push_back({{"label", m.label},
                                          {"class", kRenderClassNames[m.load.ray_class]},
                                          {"rays", m.load.rays},
@@ -69,6 +77,8 @@ nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> 
                                          {"ns_per_ray", m.seconds / m.load.rays * 1e9},
                                          {"predicted_ns_per_ray", c.naive.seconds(m.load) / m.load.rays * 1e9}});
   }
+  if (!measured.grid2.empty()) j["grid2_measurements"] = load_rows(measured.grid2, nullptr, c.grid2.traversal);
+  if (!measured.grid2_builds.empty()) j["grid2_builds"] = build_rows(measured.grid2_builds, c.grid2.build);
   return j;
 }
 
@@ -112,9 +122,11 @@ std::optional<Calibration> load_calibration(const std::filesystem::path& file) {
     throw InputError(file.string() + ": a calibration of another format (made by another Kappa): run kappa calibrate again");
   Calibration c;
   if (!from_json(j.value("eq10", nlohmann::json()), c.eq10) || !from_json(j.value("extended", nlohmann::json()), c.extended) ||
-      !from_json(j.value("build", nlohmann::json()), c.build) || !from_json(j.value("naive", nlohmann::json()), c.naive))
+      !from_json(j.value("build", nlohmann::json()), c.build) || !from_json(j.value("naive", nlohmann::json()), c.naive) ||
+      !from_json(j.value("grid2", nlohmann::json()), c.grid2))
     throw InputError(file.string() +
-                     ": not a Kappa calibration (expected eq10, extended, build and naive constants, each a number >= 0)");
+                     ": not a Kappa calibration (expected eq10, extended, build, naive and grid2 constants, each a number "
+                     ">= 0)");
   c.samples = j.value("samples", std::size_t(0));
   c.machine = j.value("machine", std::string());
   c.clock = j.value("clock", std::string());

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "build_model.h"
+#include "grid2_model.h"
 #include "naive_model.h"
 #include "time_model.h"
 
@@ -18,13 +19,14 @@ namespace kappa {
 
 /// The calibration file's format; files of another one were made by another
 /// Kappa and are refused with a word to run `kappa calibrate` again.
-inline constexpr int kCalibrationFormat = 5;
+inline constexpr int kCalibrationFormat = 6;
 
 struct Calibration {
   TimeModel eq10 = eq10_model();
   TimeModel extended = extended_model(l2_cache_bytes());
   BuildModel build;  ///< the grid's build time (format 4 on), for --grid-res model
   NaiveModel naive;  ///< the naive accelerator's traversal time (format 5 on), for --accel auto
+  Grid2Model grid2;  ///< grid2's traversal and build times (format 6 on), for --accel auto
   std::size_t samples = 0;
   std::string machine;  ///< what it was measured on
   std::string clock;    ///< the QueryClock's source ("tsc", "steady_clock")
@@ -37,8 +39,16 @@ struct Calibration {
 /// constants.
 Calibration fit_calibration(std::span<const TimedLoad> measurements);
 
-nlohmann::ordered_json to_json(const Calibration& c, std::span<const TimedLoad> measurements = {},
-                               std::span<const TimedBuild> builds = {}, std::span<const TimedNaiveLoad> naive = {});
+/// What `kappa calibrate` measured, written beside the constants fitted to it.
+struct CalibrationMeasurements {
+  std::span<const TimedLoad> grid;
+  std::span<const TimedBuild> builds;
+  std::span<const TimedNaiveLoad> naive;
+  std::span<const TimedLoad> grid2;
+  std::span<const TimedBuild> grid2_builds;
+};
+
+nlohmann::ordered_json to_json(const Calibration& c, const CalibrationMeasurements& measured = {});
 /// kappa_calibration.json beside the running executable (build/ for a build
 /// tree): where `kappa calibrate` writes and `kappa render` looks by default.
 std::filesystem::path default_calibration_path();

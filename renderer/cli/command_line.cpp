@@ -205,7 +205,9 @@ CLI::App* add_cast_command(CLI::App& app, CastOptions& o) {
 CLI::App* add_calibrate_command(CLI::App& app, CalibrateOptions& o) {
   CLI::App& calibrate = *app.add_subcommand("calibrate", "measure the cost model's T0, Ts, Th on this machine");
   calibrate.add_option("scenes", o.scenes, "scenes to measure (default: the Cornell box and the low-res bunny)");
-  calibrate.add_option("--density", o.densities, "grid densities (cells per triangle) to measure at")
+  calibrate
+      .add_option("--density", o.densities,
+                  "grid densities (cells per triangle) to measure at; grid2 at top densities 1/64 of each")
       ->delimiter(',')
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->check(finite_number(1e-6, 1e6))

@@ -6,6 +6,9 @@
 
 #include "accel/check.h"
 #include "accel/thread_limit.h"
+#include "accel/grid2.h"
+#include "accel/input_error.h"
+#include "stats/grid2_model.h"
 #include "stats/naive_model.h"
 
 namespace kappa {
@@ -49,8 +52,8 @@ FrameAccelerator build_grid(const Scene& scene, const RenderSettings& settings, 
 }  // namespace
 
 std::vector<std::string> auto_candidates(bool needs_cells) {
-  if (needs_cells) return {"grid"};
-  return {"naive", "grid"};  // the exact ones; Embree is not exact
+  if (needs_cells) return {"grid", "grid2"};
+  return {"naive", "grid", "grid2"};  // the exact ones; Embree is not exact
 }
 
 FrameAccelerator build_frame_accelerator(const Scene& scene, const RenderSettings& settings, const AccelRequest& request,
@@ -66,23 +69,14 @@ FrameAccelerator build_frame_accelerator(const Scene& scene, const RenderSetting
   const auto start = std::chrono::steady_clock::now();
   const std::vector<std::string> candidates = auto_candidates(request.needs_cells);
   nlohmann::ordered_json choice = {{"requested", "auto"}, {"candidates", candidates}, {"calibration", calibration.source}};
-  if (candidates.size() == 1) {
-    // Nothing to predict between: the one accelerator that counts cells.
-    std::optional<FramePilot> pilot;
-    if (by_model) pilot = run_frame_pilot(scene, settings, request.frame_paths);
-    FrameAccelerator out = build_grid(scene, settings, request, calibration, pilot ? &*pilot : nullptr, progress);
-    choice["chosen"] = candidates.front();
-    choice["reason"] = "the render counts cells (statistics, cost AOVs or a cell map): only cell-based accelerators";
-    choice["predicted_s"] = {{"grid", out.grid_choice ? nlohmann::ordered_json(out.grid_choice->predicted_s) : nullptr}};
-    choice["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    out.accel_choice = std::move(choice);
-    return out;
-  }
-
   begin_phase(progress, "accel: predicting each accelerator's cost from a pilot of the frame", 0);
   FramePilot pilot = run_frame_pilot(scene, settings, request.frame_paths);
   const ChoiceSettings choice_settings = frame_choice_settings(pilot, settings, request.build, calibration);
-  const double naive_s = naive_seconds(pilot, choice_settings, calibration, scene.triangles.size());
+  nlohmann::ordered_json predicted, skipped = nlohmann::ordered_json::object();
+  const bool with_naive = std::find(candidates.begin(), candidates.end(), "naive") != candidates.end();
+  const double naive_s = with_naive ? naive_seconds(pilot, choice_settings, calibration, scene.triangles.size())
+                                    : std::numeric_limits<double>::infinity();
+  if (with_naive) predicted["naive"] = naive_s;
   // The grid the request would run, and its prediction: the model's choice,
   // or the named resolution evaluated on the pilot like a candidate.
   FrameAccelerator out = build_grid(scene, settings, request, calibration, &pilot, progress);
@@ -93,15 +87,36 @@ FrameAccelerator build_frame_accelerator(const Scene& scene, const RenderSetting
     const auto& grid = static_cast<const UniformGrid&>(*out.accel);
     grid_s = evaluate_candidate(grid, pilot.pilot.segments, choice_settings).total_s();
   }
-  const bool naive_wins = naive_s < grid_s;
-  if (naive_wins) {
-    out.accel = make_accelerator("naive", scene.triangles, request.build, progress);
-    out.grid_choice.reset();  // the report's grid_choice is the grid that ran's
+  predicted["grid"] = grid_s;
+  // grid2 as the request would build it, counted by its own queries over the
+  // pilot's segments; over the memory budget it is no candidate.
+  std::unique_ptr<Accelerator> grid2;
+  double grid2_s = std::numeric_limits<double>::infinity();
+  try {
+    auto built = std::make_unique<NestedGrid>(scene.triangles, grid2_options(request.build), progress);
+    grid2_s = predict_grid2(*built, pilot.pilot.segments, choice_settings, calibration.grid2).total_s();
+    predicted["grid2"] = grid2_s;
+    grid2 = std::move(built);
+  } catch (const InputError& e) {
+    predicted["grid2"] = nullptr;
+    skipped["grid2"] = e.what();
   }
+  std::string chosen = "grid";
+  if (naive_s < std::min(grid_s, grid2_s)) {
+    chosen = "naive";
+    out.accel = make_accelerator("naive", scene.triangles, request.build, progress);
+  } else if (grid2_s < grid_s) {
+    chosen = "grid2";
+    out.accel = std::move(grid2);
+  }
+  if (chosen != "grid") out.grid_choice.reset();  // the report's grid_choice is the grid that ran's
   std::uint64_t pilot_rays = 0;
   for (std::uint64_t r : pilot.pilot.rays) pilot_rays += r;
-  choice["chosen"] = naive_wins ? "naive" : "grid";
-  choice["predicted_s"] = {{"naive", naive_s}, {"grid", grid_s}};
+  choice["chosen"] = chosen;
+  if (request.needs_cells)
+    choice["reason"] = "the render counts cells (statistics, cost AOVs or a cell map): only cell-based accelerators";
+  choice["predicted_s"] = std::move(predicted);
+  choice["skipped"] = std::move(skipped);
   choice["pilot"] = {{"width", pilot.pilot.width},
                      {"height", pilot.pilot.height},
                      {"rays", pilot_rays},

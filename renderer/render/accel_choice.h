@@ -1,12 +1,14 @@
 // The accelerator a render runs: the one --accel names, or with --accel auto
-// the exact accelerator predicted fastest for the frame (issue #16), and the
-// grid's resolution by --grid-res, `model` included. `auto` decides from
-// predictions alone, never from times measured in the run: the naive
+// the exact accelerator predicted fastest for the frame (issues #16, #21),
+// and the grid's resolution by --grid-res, `model` included. `auto` decides
+// from predictions alone, never from times measured in the run: the naive
 // accelerator's by its calibrated T0 + N Th per ray (stats/naive_model.h),
 // the grid's by the extended and build models on its own counting walks of
-// the frame's pilot (stats/resolution_choice.h). Where the render asks for
-// cell statistics (--stats on, --aov cost, --cell-map) only cell-based
-// accelerators can give them, and no pilot is run to choose.
+// the frame's pilot (stats/resolution_choice.h), grid2's by its own
+// constants of those models on its own queries of the pilot's segments
+// (stats/grid2_model.h). Where the render asks for cell statistics (--stats
+// on, --aov cost, --cell-map) only the cell-based accelerators, grid and
+// grid2, can give them.
 #pragma once
 
 #include <memory>

@@ -17,7 +17,13 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
   if (!result.counters) return nullptr;
   const RenderCounters& rc = *result.counters;
   const QueryClock& clock = QueryClock::get();
+  // eq 10 is the uniform grid's; the extended model's form has constants
+  // for the grid and for grid2 (stats/grid2_model.h), the others have none.
   const bool modelled = calibration && accel.kind() == AccelKind::grid;
+  const TimeModel* extended_model = !calibration                          ? nullptr
+                                    : accel.kind() == AccelKind::grid  ? &calibration->extended
+                                    : accel.kind() == AccelKind::grid2 ? &calibration->grid2.traversal
+                                                                       : nullptr;
   const double working_set = double(accel.bytes()) + double(triangles * sizeof(Triangle));
 
   double measured = 0, eq10 = 0, extended = 0;
@@ -33,9 +39,13 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
     nlohmann::ordered_json c = {{"measured_s", m}, {"capped_queries", rc.capped[k]}, {"eq10_s", nullptr},
                                 {"extended_s", nullptr}};
     if (modelled) {
-      const double e10 = calibration->eq10.seconds(load), ext = calibration->extended.seconds(load);
-      eq10 += e10, extended += ext;
+      const double e10 = calibration->eq10.seconds(load);
+      eq10 += e10;
       c["eq10_s"] = e10;
+    }
+    if (extended_model) {
+      const double ext = extended_model->seconds(load);
+      extended += ext;
       c["extended_s"] = ext;
     }
     per_class[kRenderClassNames[k]] = std::move(c);
@@ -56,10 +66,11 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
     const TimeModel& e = calibration->eq10;
     j["eq10"] = {{"T0_ns", e.ns[0]}, {"Ts_ns", e.ns[1]}, {"Th_ns", e.ns[2]}, {"predicted_s", eq10},
                  {"relative_error", relative_error(eq10, measured)}};
+  }
+  if (extended_model)
     j["extended"] = {{"predicted_s", extended},
                      {"relative_error", relative_error(extended, measured)},
-                     {"constants", to_json(calibration->extended)["constants"]}};
-  }
+                     {"constants", to_json(*extended_model)["constants"]}};
   j["per_class"] = std::move(per_class);
   return j;
 }

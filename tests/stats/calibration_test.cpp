@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "accel/input_error.h"
@@ -170,9 +172,30 @@ TEST(Calibration, CalibrateThenRenderReportsTheCost) {
     for (const auto& m : measurements) found = found || m.at("label").get<std::string>().rfind(scene, 0) == 0;
     EXPECT_TRUE(found) << scene;
   }
+  // grid2's own frames beside them: one per scene and density, at grid2 top
+  // densities 1/64 of the grid's; its traversal and build constants fitted.
+  const auto& grid2 = calibration.at("grid2_measurements");
+  EXPECT_GE(grid2.size(), 20u);
+  for (const auto& m : grid2) EXPECT_NE(m.at("label").get<std::string>().find(" grid2 top "), std::string::npos) << m;
+  const auto at_top_quarter = [](const nlohmann::json& m) {
+    return m.at("label").get<std::string>().find("grid2 top 0.25") != std::string::npos;
+  };
+  EXPECT_TRUE(std::any_of(grid2.begin(), grid2.end(), at_top_quarter)) << "density 16: grid2's top density 0.25";
+  EXPECT_GT(calibration.at("grid2").at("build").at("constants").at("per_triangle_ns").get<double>() +
+                calibration.at("grid2").at("build").at("constants").at("per_reference_ns").get<double>(),
+            0.0);
+  EXPECT_EQ(calibration.at("grid2_builds").size(), calibration.at("builds").size());
   const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
   const auto r = test::run_kappa({"render", scene, "--spp", "2", "--width", "32", "--height", "32", "--out",
                                   (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(), "--calibration", cal});
+  // grid2's render is predicted by its own constants.
+  const auto r2 = test::run_kappa({"render", scene, "--spp", "2", "--width", "32", "--height", "32", "--accel", "grid2",
+                                   "--out", (tmp / "g.exr").string(), "--report", (tmp / "g.json").string(),
+                                   "--calibration", cal});
+  ASSERT_EQ(r2.exit_code, 0) << r2.std_err;
+  const auto g = nlohmann::json::parse(test::read_file(tmp / "g.json")).at("cost");
+  EXPECT_GT(g.at("extended").at("predicted_s").get<double>(), 0.0);
+  EXPECT_EQ(g.at("extended").at("constants"), calibration.at("grid2").at("traversal").at("constants"));
   ASSERT_EQ(r.exit_code, 0) << r.std_err;
   const auto report = nlohmann::json::parse(test::read_file(tmp / "x.json"));
   const auto& cost = report.at("cost");

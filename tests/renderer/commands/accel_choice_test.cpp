@@ -3,6 +3,9 @@
 // the same whichever exact accelerator ran.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+
 #include <nlohmann/json.hpp>
 
 #include "renderer/commands/exr_pixels.h"
@@ -22,6 +25,34 @@ std::filesystem::path four_triangles(const test::TempDir& tmp) {
     "camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "vfov_deg": 60},
     "film": {"width": 32, "height": 32}})");
   return tmp / "tet.json";
+}
+
+/// A detailed sphere (3,968 triangles, radius 0.05) filling the view, over a
+/// 100-unit floor: the grid's cells are about 2 units, so one of them holds
+/// the whole sphere and each ray to it tests every triangle (as naive does),
+/// while grid2 refines that cell down to leaves of a few triangles.
+std::filesystem::path small_sphere_over_a_large_floor(const test::TempDir& tmp) {
+  constexpr int kRings = 32, kSegments = 64;
+  constexpr double kPi = 3.14159265358979323846;
+  std::string obj = "v -50 -50 -50\nv 50 -50 -50\nv 50 -50 50\nv -50 -50 50\nf 1 3 2\nf 1 4 3\n";
+  for (int r = 0; r <= kRings; ++r)
+    for (int s = 0; s < kSegments; ++s) {
+      const double theta = kPi * r / kRings, phi = 2 * kPi * s / kSegments;
+      obj += "v " + std::to_string(0.05 * std::sin(theta) * std::cos(phi)) + " " + std::to_string(0.05 * std::cos(theta)) +
+             " " + std::to_string(0.05 * std::sin(theta) * std::sin(phi)) + "\n";
+    }
+  const auto vertex = [&](int r, int s) { return std::to_string(5 + r * kSegments + s % kSegments); };
+  for (int r = 0; r < kRings; ++r)
+    for (int s = 0; s < kSegments; ++s) {
+      // Not the triangles with two vertices at a pole.
+      if (r + 1 < kRings) obj += "f " + vertex(r, s) + " " + vertex(r + 1, s) + " " + vertex(r + 1, s + 1) + "\n";
+      if (r > 0) obj += "f " + vertex(r, s) + " " + vertex(r + 1, s + 1) + " " + vertex(r, s + 1) + "\n";
+    }
+  test::write_file(tmp / "sphere.obj", obj);
+  test::write_file(tmp / "sphere.json", R"({"meshes": ["sphere.obj"], "environment": [1, 1, 1],
+    "camera": {"eye": [0, 0, 0.2], "look_at": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 30},
+    "film": {"width": 32, "height": 32}})");
+  return tmp / "sphere.json";
 }
 
 nlohmann::json render_report(const std::vector<std::string>& extra, const test::TempDir& tmp, const std::string& name) {
@@ -47,11 +78,11 @@ TEST(AccelChoice, OnFourTrianglesWithStatisticsOffAutoRunsNaiveAndTheImageIsTheG
   ASSERT_TRUE(choice.is_object());
   EXPECT_EQ(choice.at("requested"), "auto");
   EXPECT_EQ(choice.at("chosen"), "naive");
-  EXPECT_EQ(choice.at("candidates"), nlohmann::json::array({"naive", "grid"}));
+  EXPECT_EQ(choice.at("candidates"), nlohmann::json::array({"naive", "grid", "grid2"}));
   const double naive_s = choice.at("predicted_s").at("naive").get<double>();
-  const double grid_s = choice.at("predicted_s").at("grid").get<double>();
   EXPECT_GT(naive_s, 0.0);
-  EXPECT_LT(naive_s, grid_s);
+  EXPECT_LT(naive_s, choice.at("predicted_s").at("grid").get<double>());
+  EXPECT_LT(naive_s, choice.at("predicted_s").at("grid2").get<double>());
   EXPECT_GT(choice.at("pilot").at("rays").get<double>(), 1000.0);
   EXPECT_TRUE(j.at("grid_choice").is_null());
   args = frame;
@@ -81,7 +112,30 @@ TEST(AccelChoice, OnTheBunnyAutoRunsTheGridAtTheResolutionAsked) {
   EXPECT_EQ(m.at("accel_choice").at("pilot").at("rays"), m.at("grid_choice").at("pilot").at("rays"));
 }
 
-TEST(AccelChoice, ARenderThatCountsCellsRunsTheGridWithoutAPilot) {
+TEST(AccelChoice, OnASmallDetailedObjectInALargeSceneAutoRunsGrid2AndTheImageIsTheGrids) {
+  test::TempDir tmp;
+  const std::vector<std::string> frame = {"render", small_sphere_over_a_large_floor(tmp).string(), "--spp", "2",
+                                          "--stats", "off"};
+  auto args = frame;
+  args.insert(args.end(), {"--accel", "auto"});
+  const auto j = render_report(args, tmp, "auto");
+  EXPECT_EQ(j.at("accel"), "grid2");
+  const auto& choice = j.at("accel_choice");
+  EXPECT_EQ(choice.at("chosen"), "grid2");
+  const auto& predicted = choice.at("predicted_s");
+  // Every ray to the sphere tests all its triangles in the grid's one cell
+  // (and in naive's list); grid2's leaves hold a few each.
+  EXPECT_LT(5 * predicted.at("grid2").get<double>(), predicted.at("grid").get<double>()) << predicted;
+  EXPECT_LT(5 * predicted.at("grid2").get<double>(), predicted.at("naive").get<double>()) << predicted;
+  EXPECT_TRUE(j.at("grid_choice").is_null());
+  EXPECT_TRUE(j.at("grid2").is_object());
+  args = frame;
+  args.insert(args.end(), {"--accel", "grid"});
+  render_report(args, tmp, "grid");
+  EXPECT_TRUE(test::bitwise_equal(test::exr_rgb(tmp / "auto.exr"), test::exr_rgb(tmp / "grid.exr")));
+}
+
+TEST(AccelChoice, ARenderThatCountsCellsChoosesBetweenTheCellBasedAccelerators) {
   test::TempDir tmp;
   const auto obj = four_triangles(tmp).string();
   for (const std::vector<std::string>& asks :
@@ -91,13 +145,16 @@ TEST(AccelChoice, ARenderThatCountsCellsRunsTheGridWithoutAPilot) {
     args.insert(args.end(), asks.begin(), asks.end());
     const auto j = render_report(args, tmp, "stats");
     SCOPED_TRACE(::testing::PrintToString(asks));
-    EXPECT_EQ(j.at("accel"), "grid");  // --stats on, the default: kappa is reported
     const auto& choice = j.at("accel_choice");
-    EXPECT_EQ(choice.at("candidates"), nlohmann::json::array({"grid"}));
+    EXPECT_EQ(choice.at("candidates"), nlohmann::json::array({"grid", "grid2"}));
     EXPECT_TRUE(choice.contains("reason"));
-    EXPECT_FALSE(choice.contains("pilot"));
-    EXPECT_TRUE(choice.at("predicted_s").at("grid").is_null());
-    EXPECT_TRUE(j.at("rays").at("camera").at("kappa").is_number());
+    EXPECT_TRUE(choice.contains("pilot"));
+    EXPECT_FALSE(choice.at("predicted_s").contains("naive"));
+    const double grid_s = choice.at("predicted_s").at("grid").get<double>();
+    const double grid2_s = choice.at("predicted_s").at("grid2").get<double>();
+    EXPECT_EQ(j.at("accel"), grid2_s < grid_s ? "grid2" : "grid");
+    EXPECT_EQ(choice.at("chosen"), j.at("accel"));
+    EXPECT_TRUE(j.at("rays").at("camera").at("kappa").is_number());  // --stats on, the default: kappa is reported
   }
 }
 

@@ -112,17 +112,23 @@ TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
   // depend on a file another run may have left beside the binary.
   // Extended constants: T0 per class 11, 12, ..., 15; Ts 1, Ts_occupied 19, Th 7, T_hit 23; the
   // per-class miss terms 2 + class (cells) and 3 + class (tests).
-  std::string constants = R"("T0_camera_ns": 11, "T0_shadow_ns": 12, "T0_bounce1_ns": 13, "T0_bounce2_ns": 14,
-    "T0_bounce3+_ns": 15, "Ts_ns": 1, "Ts_occupied_ns": 19, "Th_ns": 7, "T_hit_ns": 23)";
+  // grid2's own: Ts 5 and T0 per class 31, 32, ..., 35, the rest the grid's.
   const char* classes[] = {"camera", "shadow", "bounce1", "bounce2", "bounce3+"};
-  for (int k = 0; k < 5; ++k)
-    constants += ", \"Ts_miss_" + std::string(classes[k]) + "_ns\": " + std::to_string(2 + k) + ", \"Th_miss_" +
-                classes[k] + "_ns\": " + std::to_string(3 + k);
-  test::write_file(tmp / "cal.json", R"({"format": 5, "machine": "test", "clock": "tsc", "samples": 0,
+  const auto extended_constants = [&](int t0, int ts) {
+    std::string constants;
+    for (int k = 0; k < 5; ++k) constants += "\"T0_" + std::string(classes[k]) + "_ns\": " + std::to_string(t0 + k) + ", ";
+    constants += "\"Ts_ns\": " + std::to_string(ts) + R"(, "Ts_occupied_ns": 19, "Th_ns": 7, "T_hit_ns": 23)";
+    for (int k = 0; k < 5; ++k)
+      constants += ", \"Ts_miss_" + std::string(classes[k]) + "_ns\": " + std::to_string(2 + k) + ", \"Th_miss_" +
+                   classes[k] + "_ns\": " + std::to_string(3 + k);
+    return R"({"cache_bytes": 1024, "constants": {)" + constants + "}}";
+  };
+  const std::string build = R"({"threads": 1, "constants": {"per_triangle_ns": 50, "per_reference_ns": 20, "per_cell_ns": 2}})";
+  test::write_file(tmp / "cal.json", R"({"format": 6, "machine": "test", "clock": "tsc", "samples": 0,
     "eq10": {"constants": {"T0_ns": 20, "Ts_ns": 3, "Th_ns": 7}},
     "naive": {"constants": {"T0_ns": 30, "Th_ns": 2, "Th_occluded_ns": 1}},
-    "build": {"threads": 1, "constants": {"per_triangle_ns": 50, "per_reference_ns": 20, "per_cell_ns": 2}},
-    "extended": {"cache_bytes": 1024, "constants": {)" + constants + "}}}");
+    "build": )" + build + R"(, "extended": )" + extended_constants(11, 1) + R"(,
+    "grid2": {"traversal": )" + extended_constants(31, 5) + R"(, "build": )" + build + "}}");
   const auto r = test::run_kappa({"render", cornell(), "--spp", "2", "--width", "24", "--height", "24", "--out",
                                   (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(), "--calibration",
                                   (tmp / "cal.json").string()});
@@ -159,6 +165,32 @@ TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
   EXPECT_NEAR(cost.at("eq10").at("predicted_s").get<double>(), eq10, 1e-9 * eq10);
   EXPECT_NEAR(cost.at("extended").at("predicted_s").get<double>(), extended, 1e-9 * extended);
   EXPECT_EQ(cost.at("extended").at("constants").at("T_hit_ns").get<double>(), 23.0);
+
+  // grid2: the extended model with grid2's constants on its leaf counts;
+  // eq 10, the uniform grid's, is not applied.
+  const auto r2 = test::run_kappa({"render", cornell(), "--spp", "2", "--width", "24", "--height", "24", "--accel",
+                                   "grid2", "--out", (tmp / "g.exr").string(), "--report", (tmp / "g.json").string(),
+                                   "--calibration", (tmp / "cal.json").string()});
+  ASSERT_EQ(r2.exit_code, 0) << r2.std_err;
+  const auto g = nlohmann::json::parse(test::read_file(tmp / "g.json"));
+  const auto& cost2 = g.at("cost");
+  EXPECT_TRUE(cost2.at("eq10").is_null());
+  const double miss2 = 1 - 1024 / (g.at("grid2").at("bytes").get<double>() + g.at("grid2").at("N").get<double>() * 36);
+  double extended2 = 0;
+  for (int k = 0; k < 5; ++k) {
+    const auto& c = g.at("rays").at(classes[k]);
+    const double n = c.at("count").get<double>();
+    if (n == 0) continue;
+    const double cells = c.at("cells_per_ray").get<double>(), tests = c.at("tests_per_ray").get<double>();
+    const double ext = n * 1e-9 *
+                       (31 + k + 5 * cells + 19 * c.at("occupied_cells_per_ray").get<double>() + 7 * tests +
+                        23 * c.at("hit_fraction").get<double>() + (2 + k) * cells * miss2 + (3 + k) * tests * miss2);
+    EXPECT_NEAR(cost2.at("per_class").at(classes[k]).at("extended_s").get<double>(), ext, 1e-9 * ext) << classes[k];
+    extended2 += ext;
+  }
+  EXPECT_GT(extended2, 0.0);
+  EXPECT_NEAR(cost2.at("extended").at("predicted_s").get<double>(), extended2, 1e-9 * extended2);
+  EXPECT_EQ(cost2.at("extended").at("constants").at("T0_camera_ns").get<double>(), 31.0);
 }
 
 TEST(RenderReport, TraversalTimeNeverExceedsTheThreadsTime) {
