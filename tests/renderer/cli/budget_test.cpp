@@ -145,16 +145,17 @@ int wait_or_kill(pid_t pid, int seconds) {
   return status;
 }
 
-/// Renders into `dir` with `extra` flags; once `passes` passes are complete,
-/// sends `sigints` SIGINTs 20 ms apart (pending SIGINTs would merge into
-/// one) and returns the exit status.
+/// Renders into `dir` with `extra` flags; once `passes` passes are complete
+/// and `settle_ms` more have gone by, sends `sigints` SIGINTs 20 ms apart
+/// (pending SIGINTs would merge into one) and returns the exit status.
 int interrupt_after(const fs::path& dir, const fs::path& passes_file, std::vector<std::string> extra, int passes,
-                    int sigints = 1) {
+                    int sigints = 1, int settle_ms = 0) {
   const Spawned s = spawn_render(dir, passes_file, std::move(extra));
   if (!wait_for_passes(s, passes)) {
     ADD_FAILURE() << "kappa never completed " << passes << " passes";
     ::kill(s.pid, SIGKILL);
   }
+  std::this_thread::sleep_for(std::chrono::milliseconds(settle_ms));
   for (int i = 0; i < sigints; ++i) {
     if (i > 0) std::this_thread::sleep_for(std::chrono::milliseconds(20));
     ::kill(s.pid, SIGINT);
@@ -165,9 +166,11 @@ int interrupt_after(const fs::path& dir, const fs::path& passes_file, std::vecto
 TEST(Budget, CtrlCAbandonsThePassAndWritesTheCompletedOnes) {
   test::TempDir tmp, side;
   // An hour's budget: after the first pass (1 spp) each pass is sized to
-  // three minutes, so the SIGINT falls inside one.
-  const int status =
-      interrupt_after(tmp.path(), side / "passes", {"--width", "64", "--height", "64", "--time-budget", "1h"}, 1);
+  // three minutes, so the SIGINT, half a second after the first pass, falls
+  // inside the second once it traces rays (sent at once, it fell before them
+  // under ASan, abandoning none).
+  const int status = interrupt_after(tmp.path(), side / "passes",
+                                     {"--width", "64", "--height", "64", "--time-budget", "1h"}, 1, 1, 500);
   ASSERT_TRUE(WIFEXITED(status)) << "status " << status;
   EXPECT_EQ(WEXITSTATUS(status), 130);
   ASSERT_TRUE(fs::exists(tmp / "x.json"));
