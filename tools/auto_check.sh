@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # --accel auto's choice against what each exact accelerator takes, measured:
 # per scene, `kappa render SCENE --spp SPP --width W --height W --stats off`
-# with --accel auto (its time: render.time_s + the chosen structure's build_s
-# + accel_choice.seconds, the pilot and the predictions) and with each
+# with --accel auto (its time: render.time_s + accel_choice.seconds, the
+# pilot, every candidate's build and the predictions) and with each
 # candidate (render.time_s + build_s), load excluded, taking turns over RUNS
 # rounds (the first of each round rotating, as tools/ab.sh alternates);
 # medians compared. naive is run only on scenes of at most NAIVE_MAX
@@ -38,15 +38,16 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 python=/usr/bin/python3
 
-# Seconds of one render: render passes, the build of what ran, and auto's choice.
+# Seconds of one render: its passes, and the build of what ran or, for auto,
+# its whole choice (the pilot, every candidate's build and prediction).
 seconds() {
   "$python" -c "
 import json; j = json.load(open('$1'))
 build = 0.0
 for key in ('grid', 'grid2'):
     if isinstance(j.get(key), dict): build = j[key].get('build_s') or 0.0
-choice = j['accel_choice']['seconds'] if isinstance(j.get('accel_choice'), dict) else 0.0
-print(j['render']['time_s'] + build + choice, j['accel'])"
+if isinstance(j.get('accel_choice'), dict): build = j['accel_choice']['seconds']
+print(j['render']['time_s'] + build, j['accel'])"
 }
 median() { sort -g | awk '{a[NR] = $1} END {print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2}'; }
 
@@ -60,7 +61,7 @@ for scene in "${scenes[@]}"; do
   triangles=$("$python" -c "import json; print(json.load(open('$tmp/size.json'))['grid']['N'])")
   accels=(auto grid grid2)
   [ "$triangles" -le "$naive_max" ] && accels+=(naive)
-  for a in "${accels[@]}"; do : > "$tmp/$a.txt"; done
+  for a in auto naive grid grid2; do : > "$tmp/$a.txt"; done
   for ((round = 0; round < runs; ++round)); do
     for ((i = 0; i < ${#accels[@]}; ++i)); do
       a="${accels[$(((i + round) % ${#accels[@]}))]}"
