@@ -5,6 +5,7 @@
 // from its own, and so on down to kMaxGrid2Levels levels. The trees are then
 // laid out one after another: nodes, leaf offsets, references.
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
 #include <atomic>
@@ -98,10 +99,25 @@ struct CellFrame {
   Vec3d lo, hi, size;
 };
 
+/// A build task's working memory, kept across the top cells it builds so
+/// that a cell's sub-grid costs no allocation once the buffers have grown:
+/// the (child, id) pairs of the cell being split, and per level the lists
+/// of its children while they are built.
+struct BuildScratch {
+  struct Level {
+    std::vector<std::uint32_t> offsets, cursor;
+    std::vector<TriangleId> lists;
+  };
+  std::vector<std::pair<std::uint32_t, TriangleId>> pairs;
+  Level level[kMaxGrid2Levels];
+};
+
 class TreeBuilder {
  public:
-  TreeBuilder(std::span<const Triangle> triangles, double margin, double leaf_density, LocalTree& tree)
-      : m_triangles(triangles), m_margin(margin), m_leaf_density(leaf_density), m_tree(tree) {}
+  TreeBuilder(std::span<const Triangle> triangles, double margin, double leaf_density, LocalTree& tree,
+              BuildScratch& scratch)
+      : m_triangles(triangles), m_margin(margin), m_leaf_density(leaf_density), m_tree(tree), m_scratch(scratch),
+        m_pairs(scratch.pairs) {}
 
   /// Fills node `index` (already in the tree) for a cell holding `ids`
   /// (ascending), at `level`.
@@ -127,19 +143,23 @@ class TreeBuilder {
     sub.cell_size = Vec3d{sub_cell_size(cell.size.x, r.nx), sub_cell_size(cell.size.y, r.ny), sub_cell_size(cell.size.z, r.nz)};
     const Vec3d inv{1.0 / sub.cell_size.x, 1.0 / sub.cell_size.y, 1.0 / sub.cell_size.z};
     // The children's lists: one overlap pass into (child, id) pairs, in id
-    // order, then a counting sort by child (each list ascending). The pair
-    // buffer is the builder's, reused: it is consumed before the recursion.
+    // order, then a counting sort by child (each list ascending).
     const std::uint64_t children = r.cells();
     m_pairs.clear();
     for (TriangleId id : ids)
       for_each_overlapped_cell(sub, inv, m_triangles[id],
                                [&](std::uint64_t c) { m_pairs.push_back({std::uint32_t(c), id}); });
-    std::vector<std::uint32_t> offsets(children + 1, 0);
+    // The lists live in this level's scratch until the children are built
+    // (a child's build fills the next level's), reused by its siblings.
+    BuildScratch::Level& scratch = m_scratch.level[level];
+    std::vector<std::uint32_t>& offsets = scratch.offsets;
+    offsets.assign(children + 1, 0);
     for (const auto& [c, id] : m_pairs) ++offsets[c + 1];
     for (std::uint64_t c = 0; c < children; ++c) offsets[c + 1] += offsets[c];
-    std::vector<TriangleId> lists(offsets[children]);
-    std::vector<std::uint32_t> cursor(offsets.begin(), offsets.end() - 1);
-    for (const auto& [c, id] : m_pairs) lists[cursor[c]++] = id;
+    std::vector<TriangleId>& lists = scratch.lists;
+    lists.resize(offsets[children]);
+    scratch.cursor.assign(offsets.begin(), offsets.end() - 1);
+    for (const auto& [c, id] : m_pairs) lists[scratch.cursor[c]++] = id;
 
     const std::size_t first = m_tree.nodes.size();
     m_tree.nodes.resize(first + children);
@@ -176,7 +196,8 @@ class TreeBuilder {
   std::span<const Triangle> m_triangles;
   double m_margin, m_leaf_density;
   LocalTree& m_tree;
-  std::vector<std::pair<std::uint32_t, TriangleId>> m_pairs;
+  BuildScratch& m_scratch;
+  std::vector<std::pair<std::uint32_t, TriangleId>>& m_pairs;  ///< consumed before the recursion
 };
 
 }  // namespace
@@ -236,6 +257,7 @@ NestedGrid::NestedGrid(std::span<const Triangle> triangles, const Grid2Options& 
   // Each top cell's tree, in parallel (one task a top cell).
   begin_phase(progress, "grid2 " + g.resolution.to_string() + ": sub-grids", top_cells);
   std::vector<LocalTree> trees(top_cells);
+  tbb::enumerable_thread_specific<BuildScratch> scratch;
   const std::uint64_t nx = std::uint64_t(g.resolution.nx), ny = std::uint64_t(g.resolution.ny);
   kappa::parallel_for(tbb::blocked_range<std::uint64_t>(0, top_cells), [&](const auto& range) {
     for (std::uint64_t c = range.begin(); c != range.end(); ++c) {
@@ -254,7 +276,7 @@ NestedGrid::NestedGrid(std::span<const Triangle> triangles, const Grid2Options& 
         continue;
       }
       tree.nodes.resize(1);
-      TreeBuilder(triangles, g.margin, options.leaf_density, tree).build(0, cell, ids, 0);
+      TreeBuilder(triangles, g.margin, options.leaf_density, tree, scratch.local()).build(0, cell, ids, 0);
     }
     advance(progress, range.size());
   });

@@ -36,8 +36,8 @@ struct ClipPolygon {
 /// The part of `p` with lo <= coordinate `axis` <= hi (Sutherland-Hodgman
 /// against the slab's two planes at once: an edge crossing the whole slab
 /// gives both crossings).
-inline ClipPolygon clip_to_slab(const ClipPolygon& p, int axis, double lo, double hi) {
-  ClipPolygon out;
+inline void clip_to_slab(const ClipPolygon& p, int axis, double lo, double hi, ClipPolygon& out) {
+  out.n = 0;
   auto crossing = [axis](const Vec3d& a, const Vec3d& b, double plane) {
     const double t = (plane - a[axis]) / (b[axis] - a[axis]);  // a and b lie on opposite sides: no 0/0
     Vec3d c = a + (b - a) * t;
@@ -62,7 +62,6 @@ inline ClipPolygon clip_to_slab(const ClipPolygon& p, int axis, double lo, doubl
       out.v[out.n++] = crossing(a, b, hi);
     }
   }
-  return out;
 }
 
 /// Candidate cell range [first, last] along `axis` for polygon `p`: the
@@ -113,17 +112,29 @@ std::uint64_t for_each_overlapped_cell(const GridInfo& grid, const Vec3d& inv_ce
   const Vec3d margin{m, m, m};
   detail::ClipPolygon whole;
   whole.v[0] = v0, whole.v[1] = v1, whole.v[2] = v2, whole.n = 3;
+  detail::ClipPolygon slab_clip, row_clip;
   std::uint64_t tests = 0;
   int z0, z1;
   detail::candidate_range(grid, inv_cell, whole, 2, z0, z1);
   for (int z = z0; z <= z1; ++z) {
-    const detail::ClipPolygon slab = detail::clip_to_slab(whole, 2, cell_lo(grid, 2, z) - 2 * m, cell_hi(grid, 2, z) + 2 * m);
+    // One slab (or row) of candidates needs no clip: the unclipped polygon's
+    // ranges hold the clipped one's, and the test decides every candidate, so
+    // the cells found are the same (most triangles of a fine sub-grid).
+    const detail::ClipPolygon* slab = &whole;
+    if (z0 != z1) {
+      detail::clip_to_slab(whole, 2, cell_lo(grid, 2, z) - 2 * m, cell_hi(grid, 2, z) + 2 * m, slab_clip);
+      slab = &slab_clip;
+    }
     int y0, y1;
-    detail::candidate_range(grid, inv_cell, slab, 1, y0, y1);
+    detail::candidate_range(grid, inv_cell, *slab, 1, y0, y1);
     for (int y = y0; y <= y1; ++y) {
-      const detail::ClipPolygon row = detail::clip_to_slab(slab, 1, cell_lo(grid, 1, y) - 2 * m, cell_hi(grid, 1, y) + 2 * m);
+      const detail::ClipPolygon* row = slab;
+      if (y0 != y1) {
+        detail::clip_to_slab(*slab, 1, cell_lo(grid, 1, y) - 2 * m, cell_hi(grid, 1, y) + 2 * m, row_clip);
+        row = &row_clip;
+      }
       int x0, x1;
-      detail::candidate_range(grid, inv_cell, row, 0, x0, x1);
+      detail::candidate_range(grid, inv_cell, *row, 0, x0, x1);
       const std::uint64_t row_index =
           std::uint64_t(grid.resolution.nx) * (std::uint64_t(y) + std::uint64_t(grid.resolution.ny) * std::uint64_t(z));
       for (int x = x0; x <= x1; ++x) {

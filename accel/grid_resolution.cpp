@@ -48,12 +48,32 @@ GridResolution choose_resolution(const Vec3d& extent, double target_cells) {
   // The cell count falls as the cell side grows: bisect (in log space) for
   // the side whose count is closest to the target.
   double small = largest / kMaxGridAxis, big = largest;
-  for (int i = 0; i < 100; ++i) {
-    const double mid = std::sqrt(small * big);
-    if (double(resolution_for(mid).cells()) > target_cells) small = mid;
-    else big = mid;
+  GridResolution a = resolution_for(small), b = resolution_for(big);
+  // Most boxes are near-cubic: a bracket of 4x around the side of cubic
+  // cells of the target count saves the dozen steps from the whole range.
+  // Taken only if its ends hold the bisection's invariant (more cells than
+  // the target at the small end, at most the target at the big end), so the
+  // count's one crossing of the target lies inside it and the answer is the
+  // same as from the whole range.
+  double volume = 1;
+  for (int k = 0; k < 3; ++k) volume *= std::max(extent[k], small);
+  const double guess = std::cbrt(volume / target_cells);
+  if (guess / 2 > small && guess * 2 < big) {
+    const GridResolution guess_a = resolution_for(guess / 2), guess_b = resolution_for(guess * 2);
+    if (double(guess_a.cells()) > target_cells && !(double(guess_b.cells()) > target_cells))
+      small = guess / 2, big = guess * 2, a = guess_a, b = guess_b;
   }
-  const GridResolution a = resolution_for(small), b = resolution_for(big);
+  for (int i = 0; i < 100; ++i) {
+    // Done once a has more cells than the target and b differs from it by
+    // one step on one axis: every side between them then resolves to a or
+    // b, so the remaining steps would keep both (the grid2 build calls this
+    // for every cell it refines, and all 100 steps were a quarter of it).
+    if (double(a.cells()) > target_cells && (a.nx - b.nx) + (a.ny - b.ny) + (a.nz - b.nz) <= 1) break;
+    const double mid = std::sqrt(small * big);
+    const GridResolution r = resolution_for(mid);
+    if (double(r.cells()) > target_cells) small = mid, a = r;
+    else big = mid, b = r;
+  }
   const double da = std::abs(std::log(double(a.cells()) / target_cells));
   const double db = std::abs(std::log(double(b.cells()) / target_cells));
   return da < db ? a : b;

@@ -175,6 +175,49 @@ TEST(Grid, ResolutionParsingAndChoice) {
   EXPECT_EQ(line, (GridResolution{50, 1, 1}));
 }
 
+// The choice by all 100 bisection steps, as it was before it stopped early:
+// the early stop must give the same resolution for every box and target.
+GridResolution choose_resolution_by_every_step(const Vec3d& extent, double target_cells) {
+  const double largest = max_component(extent);
+  if (!(largest > 0) || !(target_cells > 1)) return {};
+  auto resolution_for = [&](double cell) {
+    GridResolution r;
+    int* axes[3] = {&r.nx, &r.ny, &r.nz};
+    for (int a = 0; a < 3; ++a) *axes[a] = int(std::clamp(std::round(extent[a] / cell), 1.0, double(kMaxGridAxis)));
+    return r;
+  };
+  double small = largest / kMaxGridAxis, big = largest;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = std::sqrt(small * big);
+    if (double(resolution_for(mid).cells()) > target_cells) small = mid;
+    else big = mid;
+  }
+  const GridResolution a = resolution_for(small), b = resolution_for(big);
+  const double da = std::abs(std::log(double(a.cells()) / target_cells));
+  const double db = std::abs(std::log(double(b.cells()) / target_cells));
+  return da < db ? a : b;
+}
+
+TEST(Grid, ResolutionChoiceStopsEarlyWithTheSameAnswer) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> log_extent(-3, 3), log_target(0.1, 9);
+  int compared = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Vec3d extent{std::pow(10.0, log_extent(rng)), std::pow(10.0, log_extent(rng)), std::pow(10.0, log_extent(rng))};
+    if (i % 4 == 1) extent.y = extent.x;            // two axes' steps coincide
+    if (i % 4 == 2) extent = {extent.x, extent.x, extent.x};
+    if (i % 8 == 3) extent.z = 1e-9 * extent.x;     // flat
+    const double target = std::pow(10.0, log_target(rng));
+    ASSERT_EQ(choose_resolution(extent, target), choose_resolution_by_every_step(extent, target))
+        << extent.x << " " << extent.y << " " << extent.z << " target " << target;
+    ++compared;
+  }
+  // The targets past kMaxGridAxis^3 and below 1 as well.
+  for (double target : {0.5, 1.0, 1.0000001, 2.0, 1e13, 1e15})
+    EXPECT_EQ(choose_resolution({1, 2, 3}, target), choose_resolution_by_every_step({1, 2, 3}, target)) << target;
+  EXPECT_EQ(compared, 20000);
+}
+
 TEST(Grid, MemoryLimitIsAClearError) {
   const auto tris = test::random_soup(10, 23);
   GridOptions options;
