@@ -35,11 +35,22 @@ std::uint64_t fixed_value_bytes(const std::string& type) {
   return 0;
 }
 
+std::int32_t signed_little_endian(const unsigned char* b) { return std::int32_t(little_endian(b)); }
+
 }  // namespace
 
-void check_exr_header(const std::filesystem::path& path) {
+double ExrLayout::chunk_bytes() const {
+  if (tile_width > 0 && tile_height > 0) return double(tile_width) * double(tile_height) * double(pixel_bytes);
+  // OpenEXR's scanlines a chunk: ZIP 16; PIZ, PXR24, B44, B44A, DWAA 32; DWAB 256.
+  static constexpr int kLines[] = {1, 1, 1, 16, 32, 32, 32, 32, 32, 256};
+  const int lines = compression >= 0 && compression < 10 ? kLines[compression] : 256;
+  return double(lines) * double(width) * double(pixel_bytes);
+}
+
+ExrLayout check_exr_header(const std::filesystem::path& path) {
+  ExrLayout layout;
   std::ifstream in(path, std::ios::binary);
-  if (!in) return;  // the reader says why
+  if (!in) return layout;  // the reader says why
   in.seekg(0, std::ios::end);
   const std::uint64_t size = std::uint64_t(in.tellg());
   in.seekg(0);
@@ -71,13 +82,45 @@ void check_exr_header(const std::filesystem::path& path) {
                                " are left in the file");
     in.seekg(std::streamoff(std::uint64_t(in.tellg()) + bytes));
   };
-  // One attribute's value, consumed as OpenEXR 3.1's reader of its type does.
+  bool first_header = true;
+  // `bytes` of a value that is kept, read in full or refused.
+  const auto read_bytes = [&](unsigned char* out, std::uint64_t bytes, const std::string& what) {
+    if (bytes > left()) refuse(what + " needs " + std::to_string(bytes) + " bytes, but " + std::to_string(left()) +
+                               " are left in the file");
+    in.read(reinterpret_cast<char*>(out), std::streamsize(bytes));
+  };
+  // One attribute's value, consumed as OpenEXR 3.1's reader of its type does;
+  // the first header's window, channels, compression and tiles kept.
   const auto read_value = [&](const std::string& name, const std::string& type, std::int32_t declared) {
     const std::string what = "attribute '" + name + "' (" + type + ")";
     if (declared < 0) refuse(what + " declares " + std::to_string(declared) + " bytes");
+    unsigned char b[16];
+    if (first_header && name == "dataWindow" && type == "box2i") {  // xMin, yMin, xMax, yMax
+      read_bytes(b, 16, what);
+      layout.width = std::int64_t(signed_little_endian(b + 8)) - signed_little_endian(b) + 1;
+      layout.height = std::int64_t(signed_little_endian(b + 12)) - signed_little_endian(b + 4) + 1;
+      return;
+    }
+    if (first_header && name == "compression" && type == "compression") {
+      read_bytes(b, 1, what);
+      layout.compression = b[0];
+      return;
+    }
+    if (first_header && name == "tiles" && type == "tiledesc") {  // x size, y size, mode
+      read_bytes(b, 9, what);
+      layout.tile_width = little_endian(b);
+      layout.tile_height = little_endian(b + 4);
+      return;
+    }
     if (const std::uint64_t fixed = fixed_value_bytes(type)) return skip(fixed, what);
     if (type == "chlist") {  // channels until an empty name, each a name and 16 bytes
-      while (!read_name("channel name", 255).empty()) skip(16, what);
+      const bool keep = first_header && name == "channels";
+      while (!read_name("channel name", 255).empty()) {
+        read_bytes(b, 16, what);  // pixel type, linear, 3 reserved, x and y sampling
+        if (!keep) continue;
+        ++layout.channels;
+        layout.pixel_bytes += little_endian(b) == 1 ? 2 : 4;  // HALF; UINT, FLOAT (OpenEXR refuses others)
+      }
       return;
     }
     if (type == "preview") {  // width and height, then 4 bytes a pixel
@@ -100,13 +143,14 @@ void check_exr_header(const std::filesystem::path& path) {
     // A header: attributes up to an empty name. A multi-part file lists
     // headers until an empty one; a single-part file has one.
     std::string name = read_name("name", longest);
-    if (name.empty()) return;
+    if (name.empty()) return layout;
     do {
       const std::string type = read_name("type", longest);
       read_value(name, type, read_int("the size of attribute '" + name + "'"));
       name = read_name("name", longest);
     } while (!name.empty());
-    if (!(flags & kMultiPart)) return;
+    if (!(flags & kMultiPart)) return layout;
+    first_header = false;
   }
 }
 

@@ -2,6 +2,7 @@
 // Kappa rendered it with --aov variance, its variance of the mean.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <vector>
@@ -22,8 +23,10 @@ struct FilmSize {
 /// Throws InputError naming the file for a file OpenImageIO cannot read, one
 /// without R, G and B channels, one with a non-finite or negative value, and,
 /// from its header before any pixel is read, one whose size is not `film`'s
-/// (when given) or whose pixels would need more than the machine's memory:
-/// a few bytes of header can declare a window of 2^31 x 2^31.
-ReferenceImage read_reference(const std::filesystem::path& path, std::optional<FilmSize> film = std::nullopt);
+/// (when given) or whose reading would need more than `max_bytes` (default:
+/// the machine's physical memory): a few bytes of header can declare a window
+/// of 2^31 x 2^31.
+ReferenceImage read_reference(const std::filesystem::path& path, std::optional<FilmSize> film = std::nullopt,
+                              std::optional<std::uint64_t> max_bytes = std::nullopt);
 
 }  // namespace kappa

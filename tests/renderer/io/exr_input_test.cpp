@@ -2,11 +2,13 @@
 // alone, an image it could not hold: a few bytes can declare 2^17 x 2^17.
 #include "renderer/io/exr_input.h"
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "renderer/io/exr_output.h"
 #include "renderer/util/error.h"
@@ -20,7 +22,7 @@ namespace {
 // table of one chunk a line: OpenEXR then opens it (a zero offset makes it
 // rebuild the table by scanning), as it opens the fuzzer's small files that
 // declare gigapixels; only reading the pixels would find them missing.
-std::string exr_declaring(int size) {
+std::string exr_declaring(int width, int height) {
   test::TempDir dir;
   Film film(4, 4, AovSelection{});
   for (float& v : film.rgb) v = 0.5f;
@@ -32,13 +34,14 @@ std::string exr_declaring(int size) {
     EXPECT_NE(at, std::string::npos) << name;
     if (at == std::string::npos) continue;
     // Then the attribute's size (16) and xMin, yMin, xMax, yMax (int32, little-endian).
-    const std::int32_t max = size - 1;
-    std::memcpy(&bytes[at + key.size() + 4 + 8], &max, 4);
-    std::memcpy(&bytes[at + key.size() + 4 + 12], &max, 4);
+    const std::int32_t x_max = width - 1, y_max = height - 1;
+    std::memcpy(&bytes[at + key.size() + 4 + 8], &x_max, 4);
+    std::memcpy(&bytes[at + key.size() + 4 + 12], &y_max, 4);
   }
-  bytes.append(8 * std::size_t(size), '\0');
+  bytes.append(8 * std::size_t(height), '\0');
   return bytes;
 }
+std::string exr_declaring(int size) { return exr_declaring(size, size); }
 
 TEST(Reference, HeaderDeclaringMoreThanMemoryIsRefusedBeforeReading) {
   test::TempDir dir;
@@ -139,6 +142,50 @@ TEST(Reference, TheUnpatchedImageIsRead) {
   EXPECT_EQ(image.height, 4);
   ASSERT_EQ(image.rgb.size(), 48u);
   for (const float v : image.rgb) EXPECT_EQ(v, 0.5f);
+}
+
+TEST(Reference, AWideImageWhoseDecodingOutgrowsTheLimitIsRefusedBeforeOpenExrOpensIt) {
+  // 5373955 x 3 pixels (the exr_reference fuzzer's, 1 kB): 0.6 GB of pixels,
+  // but a chunk of 16 ZIP scanlines is 1 GB, which OpenEXR's open allocates
+  // compressed and not, twice a thread (47 s under ASan), and OpenImageIO's
+  // conversion from the file's types took 256 scanlines: 33 GB.
+  test::TempDir dir;
+  const auto path = dir / "wide.exr";
+  test::write_file(path, exr_declaring(5373955, 3));
+  try {
+    read_reference(path, std::nullopt, std::uint64_t(1) << 30);
+    FAIL() << "a reference whose reading needs several GB was read within 1 GiB";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("wide.exr: the reference is 5373955x3 with 3 channels: reading it needs"), std::string::npos)
+        << what;
+    EXPECT_NE(what.find("more than the limit of 1.0 GiB"), std::string::npos) << what;
+  }
+}
+
+TEST(Reference, ChannelsOfEveryTypeAreReadAsFloat) {
+  // The reader takes each channel in the file's own type and converts it: a
+  // reference from another renderer is often HALF, with UINT or FLOAT beside.
+  test::TempDir dir;
+  const auto path = dir / "mixed.exr";
+  OIIO::ImageSpec spec(3, 2, 7, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"id", "R", "G", "B", "variance.R", "variance.G", "variance.B"};
+  spec.channelformats = {OIIO::TypeDesc::UINT, OIIO::TypeDesc::HALF,  OIIO::TypeDesc::HALF, OIIO::TypeDesc::HALF,
+                         OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::FLOAT};
+  std::vector<float> values(3 * 2 * 7);
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = float(i % 7) + 0.25f * float(i / 7);  // exact in HALF
+  auto out = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(out && out->open(path.string(), spec)) << OIIO::geterror();
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, values.data()));
+  out->close();
+  const ReferenceImage image = read_reference(path, FilmSize{3, 2});
+  ASSERT_EQ(image.rgb.size(), 18u);
+  ASSERT_EQ(image.variance.size(), 18u);
+  for (std::size_t p = 0; p < 6; ++p)
+    for (std::size_t c = 0; c < 3; ++c) {
+      EXPECT_EQ(image.rgb[3 * p + c], values[7 * p + 1 + c]) << "pixel " << p << " channel " << c;
+      EXPECT_EQ(image.variance[3 * p + c], values[7 * p + 4 + c]) << "pixel " << p << " channel " << c;
+    }
 }
 
 }  // namespace
