@@ -2,7 +2,9 @@
 # Sets up a fresh Debian machine, builds Kappa and runs every test.
 #   tools/test.sh [CTEST ARGS]             Release build in build/, every test, then the
 #                                          statistics-free baseline (tools/check_baseline.sh)
-#   tools/test.sh --sanitize [CTEST ARGS]  ASan + UBSan build in build-asan/ with KAPPA_DCHECK on;
+#   tools/test.sh --sanitize [CTEST ARGS]  ASan + UBSan build in build-asan/ with KAPPA_DCHECK on,
+#                                          GoogleTest's tests in two shards an executable
+#                                          (tools/run_gtest_shards.sh), CTEST ARGS for the rest;
 #                                          the tests read KAPPA_TEST_SCALE and cast fewer rays;
 #                                          glibc's own leaks are suppressed (tools/lsan.supp)
 #   tools/test.sh --tsan [CTEST ARGS]      TSan build in build-tsan/: the multi-threaded tests
@@ -46,8 +48,12 @@ case "$mode" in
     # Nor the one test of --grid-max-bytes that runs a whole default calibrate
     # (2.5 minutes under ASan): Calibration.CalibrateThenRenderReportsTheCost
     # runs calibrate's every path here.
-    (cd build-asan && ctest --output-on-failure -j 2 -LE study \
-      -E '^GridFlags[.]CalibrateBuildsWithinGridMaxBytesWhenItFits$' "$@")
+    # GoogleTest's tests one process a shard (tools/run_gtest_shards.sh says
+    # why), then the others (scripts, fuzz replays, flag checks) through ctest.
+    tools/run_gtest_shards.sh 2 '-GridFlags.CalibrateBuildsWithinGridMaxBytesWhenItFits' \
+      build-asan/tests/cli_tests build-asan/tests/renderer_tests build-asan/tests/stats_tests \
+      build-asan/tests/accel_tests
+    (cd build-asan && ctest --output-on-failure -j 2 -LE study -R '^(Tools|Fuzz|Build)[.]' "$@")
     ;;
   tsan)
     build_sanitized build-tsan thread
