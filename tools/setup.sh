@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   cmake g++ ninja-build pkg-config git python3
-  libopenexr-dev libopenimageio-dev libtinyobjloader-dev libtbb-dev
+  libopenexr-dev libpng-dev libtinyobjloader-dev libtbb-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev
   libembree-dev libbenchmark-dev
   python3-numpy python3-openimageio python3-matplotlib

@@ -1,12 +1,13 @@
 #include "renderer/io/cell_map.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "renderer/io/atomic_file.h"
+#include "renderer/io/exr_output.h"
+#include "renderer/io/png_output.h"
 #include "renderer/util/error.h"
 
 namespace kappa {
@@ -58,27 +59,23 @@ void write_cell_map(AtomicOutput& out, const CellLayout& cells, const RenderCoun
     }
   }
 
-  std::vector<float> pixels;
-  int channels = 0;
-  OIIO::ImageSpec spec;
+  const Metadata axis_attribute = {{"kappa:projection_axis", std::string(1, "xyz"[axis])}};
   if (ext == ".exr") {
-    channels = 2;
+    std::vector<float> pixels;
+    pixels.reserve(2 * p.size());
     for (std::size_t i = 0; i < p.size(); ++i) pixels.insert(pixels.end(), {float(p[i]), float(theta[i])});
-    spec = OIIO::ImageSpec(w, h, channels, OIIO::TypeDesc::FLOAT);
-    spec.channelnames = {"p", "theta"};
+    write_float_exr(out.temp_path(), w, h, {"p", "theta"}, pixels, axis_attribute, file);
   } else {
-    channels = 3;
+    // sqrt(p_i / max p) in red, sqrt(Theta_i / max Theta) in green, 8 bits.
     const double max_p = std::max(1e-300, *std::max_element(p.begin(), p.end()));
     const double max_t = std::max(1e-300, *std::max_element(theta.begin(), theta.end()));
+    const auto byte = [](double x) { return std::uint8_t(std::lround(std::clamp(x, 0.0, 1.0) * 255.0)); };
+    std::vector<std::uint8_t> pixels;
+    pixels.reserve(3 * p.size());
     for (std::size_t i = 0; i < p.size(); ++i)
-      pixels.insert(pixels.end(), {float(std::sqrt(p[i] / max_p)), float(std::sqrt(theta[i] / max_t)), 0.0f});
-    spec = OIIO::ImageSpec(w, h, channels, OIIO::TypeDesc::UINT8);
+      pixels.insert(pixels.end(), {byte(std::sqrt(p[i] / max_p)), byte(std::sqrt(theta[i] / max_t)), 0});
+    write_png(out.temp_path(), w, h, pixels, file);
   }
-  spec.attribute("kappa:projection_axis", std::string(1, "xyz"[axis]));
-  auto img = OIIO::ImageOutput::create(ext == ".exr" ? "openexr" : "png");
-  if (!img || !img->open(out.temp_path().string(), spec) ||
-      !img->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !img->close())
-    fail(file, 0, "cannot write the cell map: " + (img ? img->geterror() : OIIO::geterror()));
   out.commit();
 }
 

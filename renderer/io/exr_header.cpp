@@ -40,7 +40,8 @@ std::int32_t signed_little_endian(const unsigned char* b) { return std::int32_t(
 }  // namespace
 
 double ExrLayout::chunk_bytes() const {
-  if (tile_width > 0 && tile_height > 0) return double(tile_width) * double(tile_height) * double(pixel_bytes);
+  // A tiled file read as scanlines: OpenEXR caches a row of tiles.
+  if (tile_width > 0 && tile_height > 0) return double(tile_height) * double(width) * double(pixel_bytes);
   // OpenEXR's scanlines a chunk: ZIP 16; PIZ, PXR24, B44, B44A, DWAA 32; DWAB 256.
   static constexpr int kLines[] = {1, 1, 1, 16, 32, 32, 32, 32, 32, 256};
   const int lines = compression >= 0 && compression < 10 ? kLines[compression] : 256;

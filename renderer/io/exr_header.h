@@ -17,9 +17,10 @@ struct ExrLayout {
   int compression = 0;              ///< OpenEXR's code: 0 none, 1 RLE, 2 ZIPS, 3 ZIP, 4 PIZ, ... 9 DWAB
   std::int64_t tile_width = 0, tile_height = 0;  ///< 0 for a scanline file
 
-  /// Bytes of one chunk OpenEXR decodes at a time: a tile, or the scanlines
-  /// its compression packs together (1 to 256), in double since a header can
-  /// declare a window of 2^32 x 2^32.
+  /// Bytes of one chunk OpenEXR decodes at a time, all channels: the
+  /// scanlines its compression packs together (1 to 256), or for a tiled file
+  /// a row of tiles (what its scanline reader caches); in double since a
+  /// header can declare a window of 2^32 x 2^32.
   double chunk_bytes() const;
 };
 

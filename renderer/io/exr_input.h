@@ -20,7 +20,7 @@ struct FilmSize {
   int width = 0, height = 0;
 };
 
-/// Throws InputError naming the file for a file OpenImageIO cannot read, one
+/// Throws InputError naming the file for a file OpenEXR cannot read, one
 /// without R, G and B channels, one with a non-finite or negative value, and,
 /// from its header before any pixel is read, one whose size is not `film`'s
 /// (when given) or whose reading would need more than `max_bytes` (default:

@@ -1,14 +1,38 @@
 #include "renderer/io/exr_output.h"
 
-#include <OpenImageIO/imageio.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfDoubleAttribute.h>
+#include <OpenEXR/ImfFloatAttribute.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStandardAttributes.h>
+#include <OpenEXR/ImfStringAttribute.h>
 
-#include <algorithm>
 #include <cerrno>
+#include <ctime>
+#include <exception>
 #include <type_traits>
 
+#include "accel/check.h"
 #include "renderer/util/error.h"
 
 namespace kappa {
+namespace {
+
+/// The local time in capDate's form, "YYYY:MM:DD hh:mm:ss" (OpenEXR's
+/// standard attribute; OpenImageIO, which wrote Kappa's EXRs before, added it).
+std::string cap_date() {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y:%m:%d %H:%M:%S", &local);
+  return text;
+}
+
+}  // namespace
 
 std::vector<std::string> exr_channel_names(const Film& film) {
   std::vector<std::string> names = {"R", "G", "B"};
@@ -21,15 +45,46 @@ std::vector<std::string> exr_channel_names(const Film& film) {
   return names;
 }
 
-void write_exr(const std::filesystem::path& path, const Film& film, const Metadata& metadata,
-               const std::filesystem::path& shown) {
+void write_float_exr(const std::filesystem::path& path, int width, int height, const std::vector<std::string>& names,
+                     const std::vector<float>& pixels, const Metadata& metadata, const std::filesystem::path& shown) {
   const std::filesystem::path& name = shown.empty() ? path : shown;
+  const std::size_t nc = names.size();
+  KAPPA_CHECK_EQ(pixels.size(), std::size_t(width) * std::size_t(height) * nc);
+  Imf::Header header(width, height);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  for (const std::string& channel : names) header.channels().insert(channel, Imf::Channel(Imf::FLOAT));
+  for (const auto& [key, value] : metadata) {
+    std::visit(
+        [&, k = key](const auto& v) {
+          using T = std::decay_t<decltype(v)>;
+          if constexpr (std::is_same_v<T, std::string>) header.insert(k, Imf::StringAttribute(v));
+          else if constexpr (std::is_same_v<T, int>) header.insert(k, Imf::IntAttribute(v));
+          else if constexpr (std::is_same_v<T, float>) header.insert(k, Imf::FloatAttribute(v));
+          else header.insert(k, Imf::DoubleAttribute(v));
+        },
+        value);
+  }
+  Imf::addCapDate(header, cap_date());
+  Imf::FrameBuffer frame;
+  const std::size_t x_stride = nc * sizeof(float), y_stride = x_stride * std::size_t(width);
+  for (std::size_t c = 0; c < nc; ++c)
+    frame.insert(names[c], Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(pixels.data() + c)),
+                                      x_stride, y_stride));
   // OpenEXR reports a failed write in its own words; errno still holds the
   // system's reason (EFBIG, ENOSPC, EIO).
-  const auto failed = [&](const std::string& what) {
+  errno = 0;
+  try {
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(frame);
+    file.writePixels(height);
+  } catch (const std::exception& e) {
     const int err = errno;
-    fail_output(name, "cannot write EXR (" + what + ")", err);
-  };
+    fail_output(name, std::string("cannot write EXR (") + e.what() + ")", err);
+  }
+}
+
+void write_exr(const std::filesystem::path& path, const Film& film, const Metadata& metadata,
+               const std::filesystem::path& shown) {
   const std::vector<std::string> names = exr_channel_names(film);
   const std::size_t nc = names.size();
   std::vector<float> pixels(film.pixels() * nc);
@@ -49,28 +104,7 @@ void write_exr(const std::filesystem::path& path, const Film& film, const Metada
       for (int c = 0; c < 3; ++c) *out++ = film.variance[3 * i + std::size_t(c)];
     if (!film.spp.empty()) *out++ = film.spp[i];
   }
-
-  OIIO::ImageSpec spec(film.width, film.height, int(nc), OIIO::TypeDesc::FLOAT);
-  spec.channelnames = names;
-  spec.alpha_channel = -1;
-  const auto z = std::find(names.begin(), names.end(), "depth.Z");
-  spec.z_channel = z == names.end() ? -1 : int(z - names.begin());
-  spec.attribute("compression", "zip");
-  for (const auto& [key, value] : metadata) {
-    std::visit(
-        [&, k = key](const auto& v) {
-          if constexpr (std::is_same_v<std::decay_t<decltype(v)>, double>) spec.attribute(k, OIIO::TypeDesc::DOUBLE, &v);
-          else spec.attribute(k, v);
-        },
-        value);
-  }
-
-  auto out = OIIO::ImageOutput::create("openexr");
-  if (!out) fail(path, 0, "OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
-  errno = 0;
-  if (!out->open(path.string(), spec)) failed(out->geterror());
-  if (!out->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) failed(out->geterror());
-  if (!out->close()) failed(out->geterror());
+  write_float_exr(path, film.width, film.height, names, pixels, metadata, shown);
 }
 
 }  // namespace kappa

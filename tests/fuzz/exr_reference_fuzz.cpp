@@ -1,5 +1,5 @@
 // libFuzzer target: the reference-image reader of `kappa converge --reference`
-// (OpenImageIO, then Kappa's channel and value checks). An image it accepts
+// (Kappa's header walk, OpenEXR, then Kappa's channel and value checks). An image it accepts
 // must hold width x height finite, non-negative RGB (and variance) values.
 #include <cmath>
 #include <cstddef>

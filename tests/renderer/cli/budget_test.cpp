@@ -3,7 +3,7 @@
 // SIGINT abandons the pass in progress and writes the completed passes
 // (exit 130); before a pass is complete, or at a second SIGINT, nothing is
 // written.
-#include <OpenImageIO/imageio.h>
+#include "image_files.h"
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
@@ -34,10 +34,8 @@ std::size_t entries(const fs::path& dir) {
 
 /// The EXR's channel names and kappa:spp.
 std::pair<std::vector<std::string>, int> exr_facts(const fs::path& path) {
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) return {};
-  const OIIO::ImageSpec& spec = in->spec();
-  return {spec.channelnames, spec.get_int_attribute("kappa:spp", -1)};
+  const test::ExrFile image = test::read_exr_file(path);
+  return {image.channels, image.int_attribute("kappa:spp", -1)};
 }
 
 bool has(const std::vector<std::string>& names, const std::string& name) {

@@ -5,7 +5,7 @@
 // therefore needs a README change, and vice versa.
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
+#include "image_files.h"
 
 #include <algorithm>
 #include <cmath>
@@ -177,23 +177,12 @@ TEST(MalformedPolicyTable, RowsAreWellFormed) {
 /// The values of one channel of an EXR, or an empty vector (and a test
 /// failure) if the file or channel cannot be read.
 std::vector<float> read_channel(const fs::path& exr, const std::string& channel) {
-  auto in = OIIO::ImageInput::open(exr.string());
-  if (!in) {
-    ADD_FAILURE() << "cannot open " << exr << ": " << OIIO::geterror();
-    return {};
-  }
-  const OIIO::ImageSpec& spec = in->spec();
-  const int c = spec.channelindex(channel);
-  if (c < 0) {
+  const test::ExrFile image = test::read_exr_file(exr);
+  if (image.channel(channel) < 0) {
     ADD_FAILURE() << exr << " has no channel " << channel;
     return {};
   }
-  std::vector<float> values(std::size_t(spec.width) * std::size_t(spec.height));
-  if (!in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::FLOAT, values.data())) {
-    ADD_FAILURE() << "cannot read " << channel << " of " << exr << ": " << in->geterror();
-    return {};
-  }
-  return values;
+  return image.values(channel);
 }
 
 void expect_finite_rgb(const fs::path& exr) {

@@ -233,25 +233,15 @@ TEST(RenderReport, UnwritableReportPathIsRefusedBeforeRendering) {
 }  // namespace
 }  // namespace kappa
 
-#include <OpenImageIO/imageio.h>
+#include "image_files.h"
 
 namespace kappa {
 namespace {
 
 /// Sum of one channel of an image file.
 double channel_sum(const std::filesystem::path& file, const std::string& channel) {
-  auto in = OIIO::ImageInput::open(file.string());
-  EXPECT_TRUE(in) << file;
-  if (!in) return -1;
-  const OIIO::ImageSpec& spec = in->spec();
-  std::vector<float> pixels(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(spec.nchannels));
-  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
-  int index = -1;
-  for (int c = 0; c < spec.nchannels; ++c)
-    if (spec.channelnames[std::size_t(c)] == channel) index = c;
-  EXPECT_GE(index, 0) << channel;
   double sum = 0;
-  for (std::size_t i = std::size_t(index); i < pixels.size(); i += std::size_t(spec.nchannels)) sum += pixels[i];
+  for (const float v : test::read_exr_file(file).values(channel)) sum += v;
   return sum;
 }
 
@@ -274,7 +264,18 @@ TEST(CostPictures, CostAovsAndCellMapAddUpToTheReport) {
   const auto png = test::run_kappa({"render", cornell(), "--spp", "1", "--width", "8", "--height", "8", "--out",
                                     (tmp / "y.exr").string(), "--cell-map", (tmp / "map.png").string()});
   ASSERT_EQ(png.exit_code, 0) << png.std_err;
-  EXPECT_TRUE(std::filesystem::exists(tmp / "map.png"));
+  // The same cells as the EXR map's pixels, sqrt(p_i / max p) in red and
+  // sqrt(Theta_i / max Theta) in green, 8 bits: each channel reaches 255.
+  const test::PngFile map = test::read_png_file(tmp / "map.png");
+  const test::ExrFile exr_map = test::read_exr_file(tmp / "map.exr");
+  EXPECT_EQ(map.width, exr_map.width);
+  EXPECT_EQ(map.height, exr_map.height);
+  ASSERT_EQ(map.rgb.size(), 3 * std::size_t(map.width) * std::size_t(map.height));
+  std::uint8_t most[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < map.rgb.size(); ++i) most[i % 3] = std::max(most[i % 3], map.rgb[i]);
+  EXPECT_EQ(most[0], 255);
+  EXPECT_EQ(most[1], 255);
+  EXPECT_EQ(most[2], 0);
 }
 
 TEST(CostPictures, NeedStatisticsOnTheGrid) {

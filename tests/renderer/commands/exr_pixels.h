@@ -2,21 +2,18 @@
 // bitwise (grid choice, accelerator choice).
 #pragma once
 
-#include <gtest/gtest.h>
-
-#include <OpenImageIO/imageio.h>
-
 #include <filesystem>
 #include <vector>
+
+#include "image_files.h"
 
 namespace kappa::test {
 
 inline std::vector<float> exr_rgb(const std::filesystem::path& exr) {
-  auto in = OIIO::ImageInput::open(exr.string());
-  EXPECT_TRUE(in) << OIIO::geterror();
-  if (!in) return {};
-  std::vector<float> v(std::size_t(in->spec().width * in->spec().height * 3));
-  in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, v.data());
+  const ExrFile image = read_exr_file(exr);
+  const std::vector<float> r = image.values("R"), g = image.values("G"), b = image.values("B");
+  std::vector<float> v;
+  for (std::size_t i = 0; i < r.size() && i < g.size() && i < b.size(); ++i) v.insert(v.end(), {r[i], g[i], b[i]});
   return v;
 }
 

@@ -2,7 +2,7 @@
 // the same rays and resolution, its JSON keys, its plot and its refusals.
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
+#include "image_files.h"
 
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -105,11 +105,10 @@ TEST(Sweep, PlotsOnePanelPerClassIntoAPng) {
   const auto r = run_kappa({"sweep", cornell(), "--steps", "3", "--n", "500", "--repeat", "1", "--rays",
                             "camera,shadow", "--plot", (tmp / "s.png").string(), "--quiet"});
   ASSERT_EQ(r.exit_code, 0) << r.std_err;
-  auto in = OIIO::ImageInput::open((tmp / "s.png").string());
-  ASSERT_TRUE(in) << OIIO::geterror();
+  const test::PngFile png = test::read_png_file(tmp / "s.png");
   // Two panels of 4.2 x 3.8 inches at 90 dpi.
-  EXPECT_EQ(in->spec().width, 756);
-  EXPECT_EQ(in->spec().height, 342);
+  EXPECT_EQ(png.width, 756);
+  EXPECT_EQ(png.height, 342);
   // Only the PNG: the plot's JSON was a temporary.
   std::size_t entries = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(tmp.path())) ++entries;

@@ -1,55 +1,39 @@
 // Every setting that changes the image is recorded: the command line rebuilt
 // from the EXR header alone renders a bitwise identical image.
 #include <gtest/gtest.h>
-#include <OpenImageIO/imageio.h>
 
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
 
+#include "image_files.h"
 #include "test_util.h"
 
 namespace kappa::test {
 namespace {
 
-struct Image {
-  OIIO::ImageSpec spec;
-  std::vector<float> pixels;
-};
-
-Image read_exr(const std::filesystem::path& path) {
-  auto in = OIIO::ImageInput::open(path.string());
-  EXPECT_TRUE(in) << path;
-  Image img;
-  if (!in) return img;
-  img.spec = in->spec();
-  img.pixels.resize(std::size_t(img.spec.width) * std::size_t(img.spec.height) * std::size_t(img.spec.nchannels));
-  in->read_image(0, 0, 0, img.spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data());
-  return img;
-}
-
 /// `kappa render` arguments from nothing but the image's kappa:* attributes.
-std::vector<std::string> command_from_header(const OIIO::ImageSpec& h, const std::filesystem::path& out) {
-  std::vector<std::string> args = {"render", h.get_string_attribute("kappa:scene"),
-                                   "--accel", h.get_string_attribute("kappa:accel"),
-                                   "--spp", std::to_string(h.get_int_attribute("kappa:spp")),
-                                   "--max-depth", std::to_string(h.get_int_attribute("kappa:max_depth")),
-                                   "--rr-depth", std::to_string(h.get_int_attribute("kappa:rr_depth")),
-                                   "--width", std::to_string(h.get_int_attribute("kappa:width")),
-                                   "--height", std::to_string(h.get_int_attribute("kappa:height")),
-                                   "--stats", h.get_string_attribute("kappa:stats"),
-                                   "--cell-sample", h.get_string_attribute("kappa:cell_sample"),
+std::vector<std::string> command_from_header(const ExrFile& h, const std::filesystem::path& out) {
+  std::vector<std::string> args = {"render", h.string_attribute("kappa:scene"),
+                                   "--accel", h.string_attribute("kappa:accel"),
+                                   "--spp", std::to_string(h.int_attribute("kappa:spp")),
+                                   "--max-depth", std::to_string(h.int_attribute("kappa:max_depth")),
+                                   "--rr-depth", std::to_string(h.int_attribute("kappa:rr_depth")),
+                                   "--width", std::to_string(h.int_attribute("kappa:width")),
+                                   "--height", std::to_string(h.int_attribute("kappa:height")),
+                                   "--stats", h.string_attribute("kappa:stats"),
+                                   "--cell-sample", h.string_attribute("kappa:cell_sample"),
                                    "--out", out.string(), "-q"};
-  const OIIO::ParamValue* seed = h.find_attribute("kappa:seed", OIIO::TypeDesc::DOUBLE);
+  const double* seed = h.double_attribute("kappa:seed");
   EXPECT_TRUE(seed) << "kappa:seed is a double";
   if (seed) {
     char digits[32];
-    std::snprintf(digits, sizeof digits, "%.0f", seed->get<double>());
+    std::snprintf(digits, sizeof digits, "%.0f", *seed);
     args.insert(args.end(), {"--seed", digits});
   }
-  if (h.get_int_attribute("kappa:russian_roulette", 1) == 0) args.push_back("--no-rr");
-  if (const std::string aov = h.get_string_attribute("kappa:aov"); !aov.empty()) args.insert(args.end(), {"--aov", aov});
-  if (const std::string res = h.get_string_attribute("kappa:grid_res"); res != "none") args.insert(args.end(), {"--grid-res", res});
+  if (h.int_attribute("kappa:russian_roulette", 1) == 0) args.push_back("--no-rr");
+  if (const std::string aov = h.string_attribute("kappa:aov"); !aov.empty()) args.insert(args.end(), {"--aov", aov});
+  if (const std::string res = h.string_attribute("kappa:grid_res"); res != "none") args.insert(args.end(), {"--grid-res", res});
   return args;
 }
 
@@ -61,11 +45,11 @@ TEST(RenderRecord, TheCommandRebuiltFromTheExrHeaderRendersTheSameImage) {
                                      "--grid-density", "7", "--out", (tmp / "a.exr").string(), "--report",
                                      (tmp / "a.json").string(), "-q"});
   ASSERT_EQ(first.exit_code, 0) << first.std_err;
-  const Image a = read_exr(tmp / "a.exr");
-  const std::vector<std::string> again = command_from_header(a.spec, tmp / "b.exr");
+  const ExrFile a = read_exr_file(tmp / "a.exr");
+  const std::vector<std::string> again = command_from_header(a, tmp / "b.exr");
   const RunResult second = run_kappa(again);
   ASSERT_EQ(second.exit_code, 0) << second.std_err << ::testing::PrintToString(again);
-  const Image b = read_exr(tmp / "b.exr");
+  const ExrFile b = read_exr_file(tmp / "b.exr");
   ASSERT_EQ(a.pixels.size(), b.pixels.size());
   EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)), 0);
   // The same record in the report, with natural types.
@@ -74,10 +58,10 @@ TEST(RenderRecord, TheCommandRebuiltFromTheExrHeaderRendersTheSameImage) {
   EXPECT_EQ(s.at("seed").get<double>(), 9007199254740991.0);
   EXPECT_EQ(s.at("max_depth").get<int>(), 5);
   EXPECT_FALSE(s.at("russian_roulette").get<bool>());
-  EXPECT_EQ(s.at("input_hash").get<std::string>(), a.spec.get_string_attribute("kappa:input_hash"));
+  EXPECT_EQ(s.at("input_hash").get<std::string>(), a.string_attribute("kappa:input_hash"));
   EXPECT_EQ(s.at("input_hash").get<std::string>().size(), 16u);
-  EXPECT_EQ(a.spec.get_int_attribute("kappa:max_depth"), 5);
-  EXPECT_TRUE(a.spec.find_attribute("kappa:rays", OIIO::TypeDesc::DOUBLE));
+  EXPECT_EQ(a.int_attribute("kappa:max_depth"), 5);
+  EXPECT_TRUE(a.double_attribute("kappa:rays"));
 }
 
 TEST(RenderRecord, TheInputHashFollowsTheInputFilesBytes) {
