@@ -78,18 +78,22 @@ ExrLayout check_exr_header(const std::filesystem::path& path) {
     if (!in.read(reinterpret_cast<char*>(b), 4)) refuse("the file ends in " + what);
     return std::int32_t(little_endian(b));
   };
-  const auto skip = [&](std::uint64_t bytes, const std::string& what) {
+  // Refuses a value that would run past the file's end (the check OpenEXR
+  // leaves to its allocation of the declared size).
+  const auto require = [&](std::uint64_t bytes, const std::string& what) {
     if (bytes > left()) refuse(what + " needs " + std::to_string(bytes) + " bytes, but " + std::to_string(left()) +
                                " are left in the file");
+  };
+  const auto skip = [&](std::uint64_t bytes, const std::string& what) {
+    require(bytes, what);
     in.seekg(std::streamoff(std::uint64_t(in.tellg()) + bytes));
   };
-  bool first_header = true;
   // `bytes` of a value that is kept, read in full or refused.
   const auto read_bytes = [&](unsigned char* out, std::uint64_t bytes, const std::string& what) {
-    if (bytes > left()) refuse(what + " needs " + std::to_string(bytes) + " bytes, but " + std::to_string(left()) +
-                               " are left in the file");
+    require(bytes, what);
     in.read(reinterpret_cast<char*>(out), std::streamsize(bytes));
   };
+  bool first_header = true;
   // One attribute's value, consumed as OpenEXR 3.1's reader of its type does;
   // the first header's window, channels, compression and tiles kept.
   const auto read_value = [&](const std::string& name, const std::string& type, std::int32_t declared) {

@@ -41,6 +41,11 @@ ReferenceImage read_reference(const std::filesystem::path& path, std::optional<F
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, 0, "reference image not found");
   // From the header, before OpenEXR's open allocates what it declares.
   const ExrLayout layout = check_exr_header(path);
+  // An inverted or empty data window (or none) would otherwise reach
+  // OpenEXR's own sanity check only after it allocates for the header.
+  if (layout.width <= 0 || layout.height <= 0)
+    fail(path, 0, "not a 2D image: its data window is " + std::to_string(layout.width) + "x" +
+                      std::to_string(layout.height));
   if (film && (layout.width != film->width || layout.height != film->height))
     fail(path, 0,
          "the reference is " + std::to_string(layout.width) + "x" + std::to_string(layout.height) + ", the film " +

@@ -51,8 +51,9 @@ TEST(GridChoice, TheReportGivesTheChoiceAndTheImageIsTheGridsAtAnyResolution) {
   EXPECT_TRUE(chosen_listed);
   EXPECT_LE(choice.at("predicted_s").get<double>(), 1.02 * least + 1e-15);  // the 2 % rule
   // Without a calibration file beside the binary or named: the built-in constants, said so.
-  if (!std::filesystem::exists(std::filesystem::path(KAPPA_BINARY).parent_path() / "kappa_calibration.json"))
+  if (!std::filesystem::exists(std::filesystem::path(KAPPA_BINARY).parent_path() / "kappa_calibration.json")) {
     EXPECT_EQ(choice.at("calibration"), "built-in");
+  }
   EXPECT_EQ(choice.at("calibration"), j.at("cost").at("calibration"));
 
   // The same image at the default resolution: every exact grid finds the same hits.

@@ -149,6 +149,24 @@ TEST(Reference, TheUnpatchedImageIsRead) {
   for (const float v : image.rgb) EXPECT_EQ(v, 0.5f);
 }
 
+TEST(Reference, AnEmptyOrInvertedDataWindowIsRefusedAsNot2D) {
+  // xMax below xMin: no pixels, which OpenEXR's open would find only after
+  // allocating for the header's other attributes.
+  test::TempDir dir;
+  for (const int width : {0, -3}) {
+    const auto path = dir / ("flat" + std::to_string(-width) + ".exr");
+    test::write_file(path, exr_declaring(width, 4));
+    try {
+      read_reference(path);
+      ADD_FAILURE() << "a reference with a " << width << "x4 data window was read";
+    } catch (const InputError& e) {
+      const std::string expected =
+          path.filename().string() + ": not a 2D image: its data window is " + std::to_string(width) + "x4";
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Reference, AWideImageWhoseDecodingOutgrowsTheLimitIsRefusedBeforeOpenExrOpensIt) {
   // 5373955 x 3 pixels (the exr_reference fuzzer's, 1 kB): 0.4 GB of RGB and
   // variance, but a chunk of 16 ZIP scanlines is 1 GB, which OpenEXR's open
