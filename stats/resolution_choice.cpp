@@ -151,13 +151,18 @@ std::vector<std::uint64_t> visited_cells(const UniformGrid& grid, std::span<cons
   return bits;
 }
 
+std::unique_ptr<UniformGrid> counting_grid(std::span<const Triangle> triangles, GridOptions options,
+                                           std::span<const PilotSegment> segments) {
+  options.cells_to_fill = [segments](const UniformGrid& empty) { return visited_cells(empty, segments); };
+  return std::make_unique<UniformGrid>(triangles, options);
+}
+
 std::unique_ptr<UniformGrid> counting_grid(std::span<const Triangle> triangles, const GridResolution& res,
                                            std::span<const PilotSegment> segments, std::uint64_t max_bytes) {
   GridOptions options;
   options.resolution = res;
   options.max_bytes = max_bytes;
-  options.cells_to_fill = [segments](const UniformGrid& empty) { return visited_cells(empty, segments); };
-  return std::make_unique<UniformGrid>(triangles, options);
+  return counting_grid(triangles, std::move(options), segments);
 }
 
 Candidate evaluate_candidate(const UniformGrid& grid, std::span<const PilotSegment> segments, const ChoiceSettings& settings,
@@ -201,7 +206,8 @@ std::vector<GridResolution> candidate_resolutions(std::span<const Triangle> tria
 }
 
 ResolutionChoice choose_resolution_by_model(std::span<const Triangle> triangles, std::span<const PilotSegment> segments,
-                                            const ChoiceSettings& settings, bool exhaustive, const UniformGrid* whole) {
+                                            const ChoiceSettings& settings, bool exhaustive, const UniformGrid* whole,
+                                            bool build_chosen) {
   const std::vector<GridResolution> resolutions = candidate_resolutions(triangles);
   const OccupancyModel occupancy(triangles);
   const double N = std::max(1.0, occupancy.N);
@@ -243,19 +249,29 @@ ResolutionChoice choose_resolution_by_model(std::span<const Triangle> triangles,
         start = i;
     search_unimodal(resolutions.size(), start, evaluate, settings.tolerance);
   }
+  if (choice.evaluated.empty())
+    throw InputError("--grid-res model: no candidate resolution fits --grid-max-bytes (" +
+                     std::to_string(settings.max_bytes) + " bytes)");
+  choice.chosen = smallest_within(choice.evaluated, settings.tolerance);
+  if (build_chosen) build_chosen_grid(choice, triangles, settings, whole);
+  return choice;
+}
+
+void build_chosen_grid(ResolutionChoice& choice, std::span<const Triangle> triangles, const ChoiceSettings& settings,
+                       const UniformGrid* whole) {
   // The chosen one's whole grid: `whole` itself, or built now. Its bytes
   // were predicted (eq 19): one that does not fit after all gives way to the
   // next choice.
   while (!choice.evaluated.empty()) {
     choice.chosen = smallest_within(choice.evaluated, settings.tolerance);
     const GridResolution& res = choice.evaluated[choice.chosen].res;
-    if (whole && whole->info().resolution == res) return choice;
+    if (whole && whole->info().resolution == res) return;
     GridOptions options;
     options.resolution = res;
     options.max_bytes = settings.max_bytes;
     try {
       choice.grid = std::make_unique<UniformGrid>(triangles, options);
-      return choice;
+      return;
     } catch (const InputError& e) {
       choice.skipped.push_back(res.to_string() + ": " + e.what());
       choice.evaluated.erase(choice.evaluated.begin() + std::ptrdiff_t(choice.chosen));

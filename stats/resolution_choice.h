@@ -83,6 +83,11 @@ std::vector<std::uint64_t> visited_cells(const UniformGrid& grid, std::span<cons
 /// `max_bytes`).
 std::unique_ptr<UniformGrid> counting_grid(std::span<const Triangle> triangles, const GridResolution& res,
                                            std::span<const PilotSegment> segments, std::uint64_t max_bytes);
+/// The same for the grid `options` describe (its resolution, or its density
+/// and budget for auto): what --accel auto predicts a named grid from
+/// without building it whole.
+std::unique_ptr<UniformGrid> counting_grid(std::span<const Triangle> triangles, GridOptions options,
+                                           std::span<const PilotSegment> segments);
 
 /// The candidate's predicted costs from its grid and the pilot's segments.
 /// A counting grid's whole Theta_tot, bytes and working set are predicted,
@@ -122,9 +127,18 @@ struct ResolutionChoice {
 /// its counting_grid, except one of `whole`'s resolution (the pilot's grid,
 /// built whole), which counts on `whole`. With `exhaustive` every candidate
 /// is evaluated (the tests compare the two). Throws InputError when no
-/// candidate fits the memory budget.
+/// candidate fits the memory budget. With `build_chosen` false the choice
+/// is made and nothing is built (--accel auto builds the grid only once it
+/// is chosen over the other accelerators: build_chosen_grid).
 ResolutionChoice choose_resolution_by_model(std::span<const Triangle> triangles, std::span<const PilotSegment> segments,
                                             const ChoiceSettings& settings, bool exhaustive = false,
-                                            const UniformGrid* whole = nullptr);
+                                            const UniformGrid* whole = nullptr, bool build_chosen = true);
+
+/// Builds `choice`'s chosen grid (none when it is `whole`'s resolution). Its
+/// bytes were predicted (eq 19): one that does not fit after all gives way
+/// to the next choice, and `chosen` and `skipped` say so. Throws InputError
+/// when none fits.
+void build_chosen_grid(ResolutionChoice& choice, std::span<const Triangle> triangles, const ChoiceSettings& settings,
+                       const UniformGrid* whole = nullptr);
 
 }  // namespace kappa

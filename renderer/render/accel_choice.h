@@ -8,7 +8,9 @@
 // constants of those models on its own queries of the pilot's segments
 // (stats/grid2_model.h). Where the render asks for cell statistics (--stats
 // on, --aov cost, --cell-map) only the cell-based accelerators, grid and
-// grid2, can give them.
+// grid2, can give them. Choosing costs one build: grid2 is built first and
+// the pilot runs through it, the grid is predicted from counting walks and
+// built only when chosen, naive has nothing to build.
 #pragma once
 
 #include <memory>

@@ -8,13 +8,20 @@
 
 namespace kappa {
 
-FramePilot run_frame_pilot(const Scene& scene, const RenderSettings& settings, double frame_paths) {
+FramePilot run_frame_pilot(const Scene& scene, const RenderSettings& settings, double frame_paths,
+                           const Accelerator* through, TaskProgress* progress) {
   const auto start = std::chrono::steady_clock::now();
   FramePilot out;
-  // The pilot's hits from the grid `auto` builds at the default budget (any
-  // exact accelerator gives the same; --grid-max-bytes bounds the candidates).
-  out.grid = std::make_unique<UniformGrid>(scene.triangles, GridOptions{});
-  out.pilot = run_pilot(scene, scene.width, scene.height, pilot_pixels(frame_paths), *out.grid, settings);
+  // Without `through`, the pilot's hits from the grid `auto` builds at the
+  // default budget (any exact accelerator gives the same; --grid-max-bytes
+  // bounds the candidates).
+  if (!through) {
+    out.grid = std::make_unique<UniformGrid>(scene.triangles, GridOptions{}, progress);
+    through = out.grid.get();
+  }
+  const int pixels = pilot_pixels(frame_paths);
+  begin_phase(progress, "pilot: " + std::to_string(pixels) + " pixels of the frame, to predict its cost", 0);
+  out.pilot = run_pilot(scene, scene.width, scene.height, pixels, *through, settings);
   out.frame_paths = frame_paths;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
@@ -35,16 +42,26 @@ ChoiceSettings frame_choice_settings(const FramePilot& pilot, const RenderSettin
   return s;
 }
 
-GridChoice choose_grid_by_model(const Scene& scene, const RenderSettings& settings, FramePilot& pilot,
-                                const AccelOptions& build, const Calibration& calibration) {
+GridChoice predict_grid_by_model(const Scene& scene, const RenderSettings& settings, const FramePilot& pilot,
+                                 const AccelOptions& build, const Calibration& calibration) {
   const auto start = std::chrono::steady_clock::now();
   const ChoiceSettings choice_settings = frame_choice_settings(pilot, settings, build, calibration);
-  ResolutionChoice choice =
-      choose_resolution_by_model(scene.triangles, pilot.pilot.segments, choice_settings, false, pilot.grid.get());
-
   GridChoice out;
-  out.grid = choice.grid ? std::move(choice.grid) : std::move(pilot.grid);
+  out.resolution = choose_resolution_by_model(scene.triangles, pilot.pilot.segments, choice_settings, false,
+                                              pilot.grid.get(), false);
+  out.predicted_s = out.resolution.evaluated[out.resolution.chosen].total_s();
   out.seconds = pilot.seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+void build_grid_choice(GridChoice& out, const Scene& scene, const RenderSettings& settings, FramePilot& pilot,
+                       const AccelOptions& build, const Calibration& calibration) {
+  const auto start = std::chrono::steady_clock::now();
+  const ChoiceSettings choice_settings = frame_choice_settings(pilot, settings, build, calibration);
+  ResolutionChoice& choice = out.resolution;
+  build_chosen_grid(choice, scene.triangles, choice_settings, pilot.grid.get());
+  out.grid = choice.grid ? std::move(choice.grid) : std::move(pilot.grid);
+  out.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const Candidate& chosen = choice.evaluated[choice.chosen];
   out.predicted_s = chosen.total_s();
   nlohmann::ordered_json candidates = nlohmann::ordered_json::array();
@@ -79,6 +96,12 @@ GridChoice choose_grid_by_model(const Scene& scene, const RenderSettings& settin
   std::snprintf(text, sizeof text, "chosen by the cost model (%zu candidates, predicted %.3f s), in %.3f s",
                 choice.evaluated.size(), chosen.total_s(), out.seconds);
   out.summary = text;
+}
+
+GridChoice choose_grid_by_model(const Scene& scene, const RenderSettings& settings, FramePilot& pilot,
+                                const AccelOptions& build, const Calibration& calibration) {
+  GridChoice out = predict_grid_by_model(scene, settings, pilot, build, calibration);
+  build_grid_choice(out, scene, settings, pilot, build, calibration);
   return out;
 }
 

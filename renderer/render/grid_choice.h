@@ -11,6 +11,7 @@
 
 #include "accel/factory.h"
 #include "accel/grid.h"
+#include "accel/task_progress.h"
 #include "renderer/render/frame.h"
 #include "renderer/render/pilot.h"
 #include "renderer/scene/scene.h"
@@ -22,14 +23,18 @@ namespace kappa {
 /// A frame's pilot and the grid it ran through: what --grid-res model and
 /// --accel auto predict from (one pilot when both are asked for).
 struct FramePilot {
-  std::unique_ptr<UniformGrid> grid;  ///< the grid `auto` builds at the default budget
+  std::unique_ptr<UniformGrid> grid;  ///< the grid `auto` builds at the default budget, when the pilot built it
   Pilot pilot;
   double frame_paths = 0;  ///< the frame's paths (pixels x spp, or the budget's cap)
-  double seconds = 0;      ///< the pilot grid's build and the pilot
+  double seconds = 0;      ///< the pilot grid's build (when it built one) and the pilot
 };
 
-/// Builds the pilot grid and runs the pilot of a frame of `frame_paths` paths.
-FramePilot run_frame_pilot(const Scene& scene, const RenderSettings& settings, double frame_paths);
+/// Runs the pilot of a frame of `frame_paths` paths through `through`, or
+/// when it is null through a grid it builds at the default budget (then
+/// FramePilot::grid). Any exact accelerator records the same segments.
+/// `progress` sees the grid's build and the pilot as phases.
+FramePilot run_frame_pilot(const Scene& scene, const RenderSettings& settings, double frame_paths,
+                           const Accelerator* through = nullptr, TaskProgress* progress = nullptr);
 
 /// The chooser's settings for the frame: the calibration's models, the
 /// pilot's rays scaled to the frame's, the frame's threads and memory budget.
@@ -37,17 +42,28 @@ ChoiceSettings frame_choice_settings(const FramePilot& pilot, const RenderSettin
                                      const Calibration& calibration);
 
 struct GridChoice {
-  std::unique_ptr<UniformGrid> grid;  ///< the chosen resolution's grid
+  ResolutionChoice resolution;        ///< the candidates evaluated and the one chosen
+  std::unique_ptr<UniformGrid> grid;  ///< the chosen resolution's grid, once built
   nlohmann::ordered_json report;      ///< the report's grid_choice section
   std::string summary;                ///< for the summary line: "chosen by the cost model from ..."
   double predicted_s = 0;             ///< the chosen candidate's predicted traversal and build
   double seconds = 0;                 ///< pilot, candidates and the chosen grid's build
 };
 
-/// Chooses and builds the frame's grid from `pilot` (whose grid becomes the
-/// frame's when its resolution is chosen); the calibration's `source` names
-/// it in the report. Throws InputError when no candidate fits `build`'s
-/// memory budget.
+/// Chooses the frame's grid resolution from `pilot` and builds nothing:
+/// `predicted_s` is the choice's (--accel auto weighs it against the other
+/// accelerators before building any). Throws InputError when no candidate
+/// fits `build`'s memory budget.
+GridChoice predict_grid_by_model(const Scene& scene, const RenderSettings& settings, const FramePilot& pilot,
+                                 const AccelOptions& build, const Calibration& calibration);
+
+/// Builds the chosen grid (the pilot's grid, when it is the chosen
+/// resolution, becomes the frame's) and writes the report and summary; the
+/// calibration's `source` names it. Throws InputError when no candidate fits.
+void build_grid_choice(GridChoice& choice, const Scene& scene, const RenderSettings& settings, FramePilot& pilot,
+                       const AccelOptions& build, const Calibration& calibration);
+
+/// Both: the grid --grid-res model gives the frame.
 GridChoice choose_grid_by_model(const Scene& scene, const RenderSettings& settings, FramePilot& pilot,
                                 const AccelOptions& build, const Calibration& calibration);
 

@@ -9,6 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/commands/exr_pixels.h"
+#include "renderer/render/accel_choice.h"
+#include "renderer/scene/scene_loader.h"
+#include "stats/builtin_calibration.h"
 #include "test_util.h"
 
 namespace kappa {
@@ -133,6 +136,42 @@ TEST(AccelChoice, OnASmallDetailedObjectInALargeSceneAutoRunsGrid2AndTheImageIsT
   args.insert(args.end(), {"--accel", "grid"});
   render_report(args, tmp, "grid");
   EXPECT_TRUE(test::bitwise_equal(test::exr_rgb(tmp / "auto.exr"), test::exr_rgb(tmp / "grid.exr")));
+}
+
+/// The phases a build of the frame's accelerator names, in order.
+std::vector<std::string> build_phases(const Scene& scene, const AccelRequest& request, std::string& chosen) {
+  TaskProgress progress;
+  std::vector<std::string> phases;
+  progress.set_observer([&](const TaskProgress::Snapshot& s) { phases.push_back(s.phase); });
+  const FrameAccelerator out = build_frame_accelerator(scene, RenderSettings{}, request, builtin_calibration(), &progress);
+  chosen = out.accel_choice.is_null() ? request.accel : out.accel_choice.at("chosen").get<std::string>();
+  return phases;
+}
+
+bool builds_a_grid(const std::vector<std::string>& phases) {
+  for (const std::string& phase : phases)
+    if (phase.rfind("grid ", 0) == 0) return true;  // "grid RES: counting cells", not "grid2 RES: ..."
+  return false;
+}
+
+TEST(AccelChoice, WhenGrid2IsChosenNoGridIsBuiltNotEvenForThePilot) {
+  test::TempDir tmp;
+  Warnings warnings;
+  const Scene scene = load_scene(small_sphere_over_a_large_floor(tmp), warnings);
+  AccelRequest request;
+  request.frame_paths = double(scene.width) * double(scene.height) * 16;
+  request.accel = "grid";  // the observer sees a grid's build
+  std::string chosen;
+  EXPECT_TRUE(builds_a_grid(build_phases(scene, request, chosen)));
+  // auto predicts the grid from a counting walk of the pilot's segments and
+  // runs the pilot through grid2, which it builds in any case.
+  request.accel = "auto";
+  for (const char* grid_res : {"auto", "model", "24"}) {
+    request.build.grid_res = grid_res;
+    const auto phases = build_phases(scene, request, chosen);
+    EXPECT_EQ(chosen, "grid2") << grid_res;
+    EXPECT_FALSE(builds_a_grid(phases)) << grid_res << ": " << ::testing::PrintToString(phases);
+  }
 }
 
 TEST(AccelChoice, ARenderThatCountsCellsChoosesBetweenTheCellBasedAccelerators) {
