@@ -164,10 +164,14 @@ void write_temporary(AtomicOutput& output, const std::string& text) {
 void AtomicOutput::commit() {
   if (m_direct) return;  // already written in place
   // On disk before it takes the target's name, so that a crash right after
-  // cannot leave an empty file there.
+  // cannot leave an empty file there. A write the kernel took but could not
+  // place (ENOSPC or EDQUOT under delayed allocation, EIO, a network file
+  // system's quota) shows only here: refused, the temporary removed.
   if (const int fd = ::open(m_temp.c_str(), O_RDONLY); fd >= 0) {
-    ::fsync(fd);
+    const int synced = ::fsync(fd);
+    const int err = errno;
     ::close(fd);
+    if (synced != 0 && err != EINVAL) fail_output(m_target, "cannot write", err);  // EINVAL: cannot sync, not a failed write
   }
   if (std::rename(m_temp.c_str(), m_target.c_str()) != 0) fail_output(m_target, "cannot replace", errno);
   m_committed = true;

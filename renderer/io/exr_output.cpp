@@ -8,11 +8,13 @@
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStandardAttributes.h>
+#include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
 #include <cerrno>
 #include <ctime>
 #include <exception>
+#include <fstream>
 #include <type_traits>
 
 #include "accel/check.h"
@@ -73,14 +75,22 @@ void write_float_exr(const std::filesystem::path& path, int width, int height, c
   // OpenEXR reports a failed write in its own words; errno still holds the
   // system's reason (EFBIG, ENOSPC, EIO).
   errno = 0;
+  std::ofstream stream(path, std::ios::binary | std::ios::trunc);
+  if (!stream) fail_output(name, "cannot write EXR", errno);
   try {
-    Imf::OutputFile file(path.c_str(), header);
+    Imf::StdOFStream exr_stream(stream, path.c_str());
+    Imf::OutputFile file(exr_stream, header);
     file.setFrameBuffer(frame);
     file.writePixels(height);
   } catch (const std::exception& e) {
     const int err = errno;
     fail_output(name, std::string("cannot write EXR (") + e.what() + ")", err);
   }
+  // OutputFile's destructor writes the line offset table and swallows any
+  // failure; the stream, ours, keeps it, and its close flushes the rest.
+  errno = 0;
+  stream.close();
+  if (stream.fail()) fail_output(name, "cannot write EXR (its line offsets or last bytes)", errno);
 }
 
 void write_exr(const std::filesystem::path& path, const Film& film, const Metadata& metadata,

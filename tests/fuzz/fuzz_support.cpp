@@ -29,12 +29,17 @@ const std::filesystem::path& scratch_dir() {
   static const std::filesystem::path dir = [] {
     auto p = std::filesystem::temp_directory_path() / ("kappa-fuzz-" + std::to_string(::getpid()));
     std::filesystem::create_directories(p);
-    std::atexit([] {
-      std::error_code ec;
-      std::filesystem::remove_all(scratch_dir(), ec);
-    });
     return p;
   }();
+  // Registered once `dir` is constructed, so that it runs before dir's
+  // destructor (atexit calls run in reverse order of registration): from
+  // inside dir's initialiser it ran after, on a destroyed path, and left
+  // every replay's folder behind.
+  static const bool removed_at_exit = std::atexit([] {
+    std::error_code ec;
+    std::filesystem::remove_all(scratch_dir(), ec);
+  }) == 0;
+  (void)removed_at_exit;
   return dir;
 }
 
