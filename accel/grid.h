@@ -117,7 +117,7 @@ struct GridInfo {
   std::uint32_t max_occupancy = 0;  ///< largest Theta_i (the report's theta_max)
   std::uint64_t max_multiplicity = 0;  ///< the most cells any one triangle is in (largest M_j, eq 13)
   std::uint64_t empty_cells = 0;
-  std::uint64_t bytes = 0;  ///< cell offsets + triangle index array + occupancy bits
+  std::uint64_t bytes = 0;  ///< cell offsets + triangle index array + occupancy bits (a partial grid: what it holds)
   double build_s = 0;
   bool partial = false;     ///< built with GridOptions::cells_to_fill: only some cells' lists
 };
@@ -172,9 +172,12 @@ class UniformGrid final : public Accelerator, public CellLayout {
     return std::uint64_t(ix) + std::uint64_t(m_info.resolution.nx) *
                                    (std::uint64_t(iy) + std::uint64_t(m_info.resolution.ny) * std::uint64_t(iz));
   }
-  /// Triangle ids in a cell, ascending.
+  /// Triangle ids in a cell, ascending (none in a cell a partial grid did
+  /// not fill).
   std::span<const TriangleId> cell(std::uint64_t index) const {
-    return {m_refs.data() + m_offsets[index], m_refs.data() + m_offsets[index + 1]};
+    if (m_info.partial && !filled(index)) return {};
+    const std::size_t s = slot(index);
+    return {m_refs.data() + m_offsets[s], m_refs.data() + m_offsets[s + 1]};
   }
 
  private:
@@ -184,11 +187,26 @@ class UniformGrid final : public Accelerator, public CellLayout {
   std::span<const Triangle> m_triangles;
   GridInfo m_info;
   Vec3d m_inv_cell;                 ///< 1 / cell size per axis
-  HugePageVector<std::uint32_t> m_offsets;  ///< N_c + 1 entries into m_refs
+  /// A cell's entry in m_offsets: the cell itself, or in a partial grid its
+  /// rank among the filled cells (whose offsets alone it stores: a counting
+  /// grid of the dragon at lambda = 32 spent 0.28 s of its 0.55 s faulting in
+  /// 112 MB of offsets for the 4 % of cells the pilot visits).
+  std::size_t slot(std::uint64_t c) const {
+    if (m_filled.empty()) return std::size_t(c);
+    const std::uint64_t below = m_filled[c >> 6] & ((std::uint64_t(1) << (c & 63)) - 1);
+    return std::size_t(m_filled_rank[c >> 6]) + std::size_t(__builtin_popcountll(below));
+  }
+  bool filled(std::uint64_t c) const { return (m_filled[c >> 6] >> (c & 63)) & 1; }
+
+  HugePageVector<std::uint32_t> m_offsets;  ///< N_c + 1 entries into m_refs (a partial grid: filled cells + 1)
   HugePageVector<TriangleId> m_refs;       ///< triangle ids, cell by cell
   /// One bit per cell, set if it holds any triangle: 1/32 of the offsets'
   /// size, so it stays in cache and empty cells cost no offset loads.
   HugePageVector<std::uint64_t> m_occupied;
+  /// A partial grid's filled cells, one bit per cell, and the filled cells
+  /// before each 64-bit word of them; empty in a whole grid.
+  std::vector<std::uint64_t> m_filled;
+  std::vector<std::uint32_t> m_filled_rank;
 };
 
 }  // namespace kappa

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cfloat>
 #include <chrono>
 #include <cmath>
@@ -147,25 +148,32 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
 
   // The cells to fill, asked of the grid while it is empty (a walk of it
   // visits what the filled grid's walk visits: the cells follow the box, not
-  // the lists).
-  std::vector<std::uint64_t> fill;
+  // the lists). A partial grid keeps offsets for those cells alone, each at
+  // its slot().
+  std::uint64_t slots = cells;
   if (options.cells_to_fill) {
-    m_offsets.assign(cells + 1, 0);  // pass 1 starts from these zeros
-    m_occupied.assign((cells + 63) / 64, 0);
-    fill = options.cells_to_fill(*this);
-    KAPPA_CHECK_EQ(fill.size(), (cells + 63) / 64);
+    m_occupied.assign((cells + 63) / 64, 0);  // the empty grid's walk reads these, never an offset
+    m_filled = options.cells_to_fill(*this);
+    KAPPA_CHECK_EQ(m_filled.size(), (cells + 63) / 64);
+    m_filled_rank.resize(m_filled.size());
+    std::uint64_t rank = 0;
+    for (std::size_t w = 0; w < m_filled.size(); ++w) {
+      m_filled_rank[w] = std::uint32_t(rank);
+      rank += std::uint64_t(std::popcount(m_filled[w]));
+    }
+    slots = rank;
     m_info.partial = true;
   }
-  const auto filled = [&fill](std::uint64_t c) { return fill.empty() || ((fill[c >> 6] >> (c & 63)) & 1); };
+  const auto filled = [this](std::uint64_t c) { return this->filled(c); };
 
   // Pass 1: count the triangles of each cell.
-  if (!m_info.partial) m_offsets.assign(cells + 1, 0);
+  m_offsets.assign(slots + 1, 0);
   begin_phase(progress, "grid " + m_info.resolution.to_string() + ": counting cells", usable_ids.size());
   std::atomic<std::uint64_t> max_multiplicity{0};
   for_each_chunk(usable_ids.size(), progress, [&](std::size_t k) {
     std::uint64_t cells_of_triangle = 0;
     const auto count = [&](std::uint64_t c) {
-      std::atomic_ref<std::uint32_t>(m_offsets[c]).fetch_add(1, std::memory_order_relaxed);
+      std::atomic_ref<std::uint32_t>(m_offsets[slot(c)]).fetch_add(1, std::memory_order_relaxed);
       ++cells_of_triangle;
     };
     if (m_info.partial) for_each_overlapped_cell(m_info, m_inv_cell, triangles[usable_ids[k]], count, filled);
@@ -181,20 +189,32 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
   // total to detect overflow.
   m_occupied.assign((cells + 63) / 64, 0);
   std::uint64_t total = 0;
-  for (std::uint64_t c = 0; c < cells; ++c) {
-    const std::uint32_t n = m_offsets[c];
+  const auto add_cell = [&](std::uint64_t c, std::size_t s) {
+    const std::uint32_t n = m_offsets[s];
     m_info.max_occupancy = std::max(m_info.max_occupancy, n);
-    m_info.empty_cells += n == 0;
     if (n != 0) m_occupied[c >> 6] |= std::uint64_t(1) << (c & 63);
     total += n;
-    m_offsets[c] = std::uint32_t(std::min<std::uint64_t>(total, std::numeric_limits<std::uint32_t>::max()));
+    m_offsets[s] = std::uint32_t(std::min<std::uint64_t>(total, std::numeric_limits<std::uint32_t>::max()));
+    return n == 0;
+  };
+  if (m_info.partial) {
+    std::size_t s = 0;
+    for (std::size_t w = 0; w < m_filled.size(); ++w)
+      for (std::uint64_t bits = m_filled[w]; bits != 0; bits &= bits - 1)
+        m_info.empty_cells += add_cell(std::uint64_t(w) * 64 + std::uint64_t(std::countr_zero(bits)), s++);
+    m_info.empty_cells += cells - slots;  // the cells left unfilled hold nothing
+  } else {
+    for (std::uint64_t c = 0; c < cells; ++c) m_info.empty_cells += add_cell(c, std::size_t(c));
   }
-  const std::uint64_t bytes = offset_bytes + total * sizeof(TriangleId);
+  const std::uint64_t held_offset_bytes =
+      m_info.partial ? (slots + 1) * sizeof(std::uint32_t) + (cells + 63) / 64 * (2 * sizeof(std::uint64_t) + sizeof(std::uint32_t))
+                     : offset_bytes;
+  const std::uint64_t bytes = held_offset_bytes + total * sizeof(TriangleId);
   if (total >= std::numeric_limits<std::uint32_t>::max() || bytes > options.max_bytes)
     throw InputError("grid: " + m_info.resolution.to_string() + " holds " + std::to_string(total) +
                                 " triangle references (" + byte_size(bytes) + "), over --grid-max-bytes (" +
                                 byte_size(options.max_bytes) + ") or 2^32 - 1 references");
-  m_offsets[cells] = std::uint32_t(total);
+  m_offsets[slots] = std::uint32_t(total);
   m_info.theta_tot = total;
   m_info.bytes = bytes;  // offset_bytes already counts the occupancy bits
 
@@ -208,7 +228,8 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
   for_each_chunk(usable_ids.size(), progress, [&](std::size_t k) {
     const TriangleId id = usable_ids[k];
     const auto place = [&](std::uint64_t c) {
-      const std::uint32_t end = std::atomic_ref<std::uint32_t>(m_offsets[c]).fetch_sub(1, std::memory_order_relaxed);
+      const std::uint32_t end =
+          std::atomic_ref<std::uint32_t>(m_offsets[slot(c)]).fetch_sub(1, std::memory_order_relaxed);
       // Pass 1 counted exactly the cells pass 2 visits: a cell counted down
       // past its start would write into the previous cell's references, and
       // past 0 before the array.
@@ -219,8 +240,8 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
     else for_each_overlapped_cell(m_info, m_inv_cell, triangles[id], place);
   });
   KAPPA_CHECK_EQ(m_offsets[0], 0u);
-  kappa::parallel_for(std::uint64_t(0), cells, [&](std::uint64_t c) {
-    std::sort(m_refs.begin() + m_offsets[c], m_refs.begin() + m_offsets[c + 1]);
+  kappa::parallel_for(std::uint64_t(0), slots, [&](std::uint64_t s) {
+    std::sort(m_refs.begin() + m_offsets[s], m_refs.begin() + m_offsets[s + 1]);
   });
   m_info.build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

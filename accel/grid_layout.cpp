@@ -8,7 +8,7 @@ namespace kappa {
 
 std::vector<std::uint32_t> UniformGrid::occupancies() const {
   std::vector<std::uint32_t> theta(m_info.resolution.cells());
-  for (std::size_t i = 0; i < theta.size(); ++i) theta[i] = m_offsets[i + 1] - m_offsets[i];
+  for (std::size_t i = 0; i < theta.size(); ++i) theta[i] = std::uint32_t(cell(i).size());
   return theta;
 }
 

@@ -12,6 +12,7 @@
 #include <type_traits>
 
 #include "grid.h"
+#include "check.h"
 #include "recorder.h"
 
 namespace kappa {
@@ -46,6 +47,7 @@ template <GridWalk Mode, class Recorder, bool TestTriangles>
 bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const {
   constexpr bool AnyHit = Mode == GridWalk::any;
   constexpr bool Whole = Mode == GridWalk::whole;
+  if constexpr (TestTriangles) KAPPA_DCHECK(!m_info.partial);  // a partial grid counts; its hits would be wrong
   // Non-finite rays and d = 0 hit nothing (as in naive, whose test yields NaN).
   // A grid without references hits nothing; a counting walk still walks it
   // (a counting grid's cells are found by walking it empty).
@@ -147,7 +149,9 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
     });
     // Empty cells (most of them) do nothing more: no offsets, no counts.
     if ((m_occupied[std::size_t(c) >> 6] >> (std::size_t(c) & 63)) & 1) {
-      const std::uint32_t begin = m_offsets[std::size_t(c)], end = m_offsets[std::size_t(c) + 1];
+      // A partial grid (counting only) stores its filled cells' offsets alone.
+      const std::size_t s = TestTriangles ? std::size_t(c) : slot(std::uint64_t(c));
+      const std::uint32_t begin = m_offsets[s], end = m_offsets[s + 1];
       ++counts.occupied;
       counts.refs += end - begin;
       for (std::uint32_t k = begin; k < end; ++k) {
