@@ -16,7 +16,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <type_traits>
 
 #include "grid.h"
 #include "triangle_box.h"
@@ -117,23 +116,6 @@ std::uint64_t for_each_overlapped_cell(const GridInfo& grid, const Vec3d& inv_ce
   std::uint64_t tests = 0;
   int z0, z1;
   detail::candidate_range(grid, inv_cell, whole, 2, z0, z1);
-  if constexpr (!std::is_same_v<std::decay_t<Keep>, EveryCell>) {
-    // A small box whose every cell `keep` refuses needs no clipping (a
-    // counting grid's pass over the dragon's 871k triangles, most of them
-    // in no cell its pilot visits).
-    int y0, y1, x0, x1;
-    detail::candidate_range(grid, inv_cell, whole, 1, y0, y1);
-    detail::candidate_range(grid, inv_cell, whole, 0, x0, x1);
-    if (std::int64_t(z1 - z0 + 1) * (y1 - y0 + 1) * (x1 - x0 + 1) <= 64) {
-      bool any = false;
-      for (int z = z0; z <= z1 && !any; ++z)
-        for (int y = y0; y <= y1 && !any; ++y)
-          for (int x = x0; x <= x1 && !any; ++x)
-            any = keep(std::uint64_t(x) +
-                       std::uint64_t(grid.resolution.nx) * (std::uint64_t(y) + std::uint64_t(grid.resolution.ny) * std::uint64_t(z)));
-      if (!any) return 0;
-    }
-  }
   for (int z = z0; z <= z1; ++z) {
     // One slab (or row) of candidates needs no clip: the unclipped polygon's
     // ranges hold the clipped one's, and the test decides every candidate, so
