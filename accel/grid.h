@@ -78,8 +78,8 @@ std::vector<TriangleId> usable_triangle_ids(std::span<const Triangle> triangles)
 /// `extent`, never more than 32-bit offsets or max_bytes allow (4 bytes a
 /// cell, and room for as many again of references), then bounded_resolution.
 /// The uniform grid's, and grid2's top grid.
-GridResolution density_resolution(std::span<const Triangle> triangles, const Vec3d& extent, double density,
-                                  double N, std::uint64_t max_bytes);
+GridResolution density_resolution(const OccupancyModel& occupancy, const Vec3d& extent, double density, double N,
+                                  std::uint64_t max_bytes);
 
 /// The most cells at or below `resolution`'s (near-cubic, by
 /// choose_resolution over `extent`) whose predicted Theta_tot keeps within the
@@ -103,6 +103,10 @@ struct GridOptions {
   /// visit, so that it counts them as the whole grid would at a fraction of
   /// the build (GridInfo::partial; its theta_tot and bytes are its own).
   std::function<std::vector<std::uint64_t>(const UniformGrid&)> cells_to_fill;
+  /// Eq 19's sums over these same triangles, when the caller has made them
+  /// (a chooser predicting from them too), so that an auto resolution does
+  /// not make them again; nullptr: made here. Must outlive the constructor.
+  const OccupancyModel* occupancy = nullptr;
 };
 
 /// What the grid measured about itself while building (for reports).

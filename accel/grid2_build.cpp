@@ -215,7 +215,8 @@ NestedGrid::NestedGrid(std::span<const Triangle> triangles, const Grid2Options& 
   const Vec3d extent = g.hi - g.lo;
 
   // The top grid: top_density * N cells, bounded as the uniform grid's are.
-  g.resolution = density_resolution(triangles, extent, options.top_density, double(m_info.N), options.max_bytes);
+  g.resolution =
+      density_resolution(OccupancyModel(triangles), extent, options.top_density, double(m_info.N), options.max_bytes);
   const std::uint64_t top_cells = g.resolution.cells();
   for (int a = 0; a < 3; ++a) {
     const double l = extent[a] / g.resolution[a];

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "accel/check.h"
 #include "accel/thread_limit.h"
@@ -71,7 +72,9 @@ double predict_grid(const Scene& scene, const RenderSettings& settings, const Ac
     if (pilot.grid && is_default_grid(request.build))
       return evaluate_candidate(*pilot.grid, pilot.pilot.segments, choice_settings).total_s();
     const OccupancyModel occupancy(scene.triangles);
-    const auto counting = counting_grid(scene.triangles, grid_options(request.build), pilot.pilot.segments);
+    GridOptions options = grid_options(request.build);
+    options.occupancy = &occupancy;
+    const auto counting = counting_grid(scene.triangles, std::move(options), pilot.pilot.segments);
     return evaluate_candidate(*counting, pilot.pilot.segments, choice_settings, &occupancy).total_s();
   } catch (const InputError& e) {
     skipped["grid"] = e.what();

@@ -247,6 +247,20 @@ TEST(Grid, AutoResolutionBoundsThetaForCopiesOfOneLargeTriangle) {
   GridOptions explicit_res;
   explicit_res.resolution = GridResolution{20, 20, 20};
   EXPECT_EQ(UniformGrid(std::span(copies).first(10), explicit_res).info().resolution, (GridResolution{20, 20, 20}));
+  // Eq 19's sums given by a chooser that made them are the ones the bound
+  // reads: the copies' own give the grid they give unasked (lowered), a small
+  // soup's (never over the bound) leave lambda * N cells.
+  const std::span<const Triangle> hundred = std::span(copies).first(100);
+  const GridInfo unasked = UniformGrid(hundred, GridOptions{}).info();
+  EXPECT_LT(unasked.resolution.cells(), std::uint64_t(kDefaultGridDensity * 100)) << unasked.resolution.to_string();
+  const OccupancyModel own(hundred);
+  GridOptions given;
+  given.occupancy = &own;
+  EXPECT_EQ(UniformGrid(hundred, given).info().resolution, unasked.resolution);
+  const OccupancyModel small(test::random_soup(100, 5, 0.01f));
+  given.occupancy = &small;
+  EXPECT_EQ(UniformGrid(hundred, given).info().resolution,
+            choose_resolution(unasked.hi - unasked.lo, kDefaultGridDensity * 100.0));
 }
 
 TEST(Grid, ThetaBoundLeavesRealScenesAtLambdaTimesN) {
