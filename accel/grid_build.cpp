@@ -219,7 +219,8 @@ UniformGrid::UniformGrid(std::span<const Triangle> triangles, const GridOptions&
   // Inclusive prefix sum into offsets (each cell's end; pass 2 counts them
   // down to each cell's start), the occupancy bits from the counts; 64-bit
   // total to detect overflow.
-  m_occupied.assign((cells + 63) / 64, 0);
+  // A partial grid's bits are still the zeros its empty walk read.
+  if (!m_info.partial) m_occupied.assign((cells + 63) / 64, 0);
   std::uint64_t total = 0;
   const auto add_cell = [&](std::uint64_t c, std::size_t s) {
     const std::uint32_t n = m_offsets[s];
