@@ -12,6 +12,7 @@
 #include "grid2.h"
 #include "grid_traverse.h"  // detail::Mailbox
 #include "recorder.h"
+#include "triangle4.h"
 
 namespace kappa {
 
@@ -55,6 +56,7 @@ struct Grid2Walk {
     ++counts.occupied;
     counts.refs += end - begin;
     if constexpr (!std::is_same_v<Recorder, NoRecorder>) counts.level_refs[level] += end - begin;
+    if constexpr (std::is_same_v<Recorder, NoRecorder>) return test_four_at_a_time(begin, end);
     for (std::uint32_t k = begin; k < end; ++k) {
       const TriangleId id = refs[k];
       if (mailbox.seen(id)) {
@@ -76,6 +78,60 @@ struct Grid2Walk {
         const float before_t = best.t;
         test_closest(prepared, triangles[id], id, ray.tmin, best);
         if (best.triangle != before || best.t != before_t) recorder.hit();
+      }
+    }
+    return false;
+  }
+
+  /// A leaf's triangles not yet tested, four at a time (triangle4.h), when
+  /// nothing is recorded (a recorder counts each test as the scalar loop
+  /// makes it); true when an any-hit walk is done. The same verdicts, t and
+  /// barycentrics as the scalar loop, in the same order.
+  bool test_four_at_a_time(std::uint32_t begin, std::uint32_t end) {
+    const Triangle* batch[4];
+    TriangleId ids[4];
+    int n = 0;
+    for (std::uint32_t k = begin; k < end; ++k) {
+      const TriangleId id = refs[k];
+      if (mailbox.seen(id)) continue;
+      batch[n] = &triangles[id];
+      ids[n++] = id;
+      if (n == 4) {
+        if (test_batch(batch, ids, 4)) return true;
+        n = 0;
+      }
+    }
+    if (n == 1) return test_one(*batch[0], ids[0]);
+    return n > 1 && test_batch(batch, ids, n);
+  }
+
+  [[gnu::always_inline]] bool test_one(const Triangle& triangle, TriangleId id) {
+    if constexpr (AnyHit) {
+      float t, b0, b1, b2;
+      occluded = intersect_triangle(prepared, triangle, ray.tmin, ray.tmax, t, b0, b1, b2);
+      return occluded;
+    } else {
+      test_closest(prepared, triangle, id, ray.tmin, best);
+      return false;
+    }
+  }
+
+  bool test_batch(const Triangle* const batch[4], const TriangleId ids[4], int n) {
+    Lanes4 lanes;
+    intersect4(prepared, batch, n, ray.tmin, lanes);
+    // Lanes in list order, each against the limit the scalar loop would
+    // have had after the lanes before it (test_closest's).
+    for (int bits = lanes.valid | lanes.exact; bits != 0; bits &= bits - 1) {
+      const int i = __builtin_ctz(unsigned(bits));
+      if (lanes.exact >> i & 1) {
+        if (test_one(*batch[i], ids[i])) return true;
+        continue;
+      }
+      if constexpr (AnyHit) {
+        if (accept4(lanes, i, ray.tmin, ray.tmax)) return occluded = true;
+      } else {
+        if (accept4(lanes, i, ray.tmin, closest_limit(best)) && closer_than(lanes.t[i], ids[i], best))
+          best = Hit{ids[i], lanes.t[i], lanes.b[0][i], lanes.b[1][i], lanes.b[2][i]};
       }
     }
     return false;

@@ -119,15 +119,19 @@ struct PreparedRay {
 
 /// Closest-hit update shared by the exact accelerators: tests one triangle and
 /// keeps it if it is closer under closer_than's tie rule.
+/// The tmax a closest-hit walk tests its next triangle with. The range test
+/// before the division rounds differently from t itself, so a triangle at
+/// exactly best.t could be cut by it, and which of two equal-t triangles
+/// survives would depend on test order. A limit a few ulps above best.t lets
+/// every equal-t candidate reach the tie rule; closer_than alone decides
+/// (best.t starts at ray.tmax, so the ray's range still holds).
+[[gnu::always_inline]] inline float closest_limit(const Hit& best) {
+  return best.t * (1.0f + 8.0f * std::numeric_limits<float>::epsilon());
+}
+
 [[gnu::always_inline]] inline void test_closest(const PreparedRay& r, const Triangle& tri, TriangleId id, float tmin, Hit& best) {
   float t, b0, b1, b2;
-  // The range test before the division rounds differently from t itself, so
-  // a triangle at exactly best.t could be cut by it, and which of two equal-t
-  // triangles survives would depend on test order. A limit a few ulps above
-  // best.t lets every equal-t candidate reach the tie rule; closer_than alone
-  // decides (best.t starts at ray.tmax, so the ray's range still holds).
-  const float limit = best.t * (1.0f + 8.0f * std::numeric_limits<float>::epsilon());
-  if (intersect_triangle(r, tri, tmin, limit, t, b0, b1, b2) && closer_than(t, id, best)) {
+  if (intersect_triangle(r, tri, tmin, closest_limit(best), t, b0, b1, b2) && closer_than(t, id, best)) {
     best = Hit{id, t, b0, b1, b2};
   }
 }
