@@ -23,6 +23,8 @@ template <GridWalk Mode, class Recorder>
 struct Grid2Walk {
   static constexpr bool AnyHit = Mode == GridWalk::any;
   static constexpr bool Closest = Mode == GridWalk::closest;
+  /// Without a recorder nothing reads the counts, and the walk keeps none.
+  static constexpr bool Records = !std::is_same_v<Recorder, NoRecorder>;
 
   Grid2Walk(const Ray& r, Hit& b, Recorder& rec, const Triangle* tris, const std::uint32_t* offs, const TriangleId* ids)
       : ray(r), prepared(r), best(b), recorder(rec), triangles(tris), offsets(offs), refs(ids), o(r.o), d(r.d) {}
@@ -47,16 +49,18 @@ struct Grid2Walk {
   [[gnu::always_inline]] bool visit_leaf(const NestedGrid::Node& node, BoxFn&& box) {
     constexpr int level = Level;
     const std::uint32_t leaf = node.index;
-    ++counts.cells;
-    if constexpr (!std::is_same_v<Recorder, NoRecorder>) ++counts.level_cells[level];
+    if constexpr (Records) {
+      ++counts.cells;
+      ++counts.level_cells[level];
+    }
     recorder.cell(leaf, level, box);
     if (node.kind == NestedGrid::empty) return false;
     const std::uint32_t begin = offsets[leaf], end = offsets[leaf + 1];
     if (begin == end) return false;
+    if constexpr (!Records) return test_four_at_a_time(begin, end);
     ++counts.occupied;
     counts.refs += end - begin;
-    if constexpr (!std::is_same_v<Recorder, NoRecorder>) counts.level_refs[level] += end - begin;
-    if constexpr (std::is_same_v<Recorder, NoRecorder>) return test_four_at_a_time(begin, end);
+    counts.level_refs[level] += end - begin;
     for (std::uint32_t k = begin; k < end; ++k) {
       const TriangleId id = refs[k];
       if (mailbox.seen(id)) {
@@ -65,7 +69,7 @@ struct Grid2Walk {
       }
       recorder.test();
       ++counts.tests;
-      if constexpr (!std::is_same_v<Recorder, NoRecorder>) ++counts.level_tests[level];
+      ++counts.level_tests[level];
       if constexpr (AnyHit) {
         float t, b0, b1, b2;
         if (intersect_triangle(prepared, triangles[id], ray.tmin, ray.tmax, t, b0, b1, b2)) {
