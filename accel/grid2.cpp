@@ -32,9 +32,10 @@ CellBox NestedGrid::cell_box(std::uint64_t i) const {
     // its cell's size over n from its low corner.
     m_leaf_boxes.resize(m_info.leaves);
     const GridInfo& g = m_info.top;
-    const auto visit = [this](auto&& self, const Node& node, const Vec3d& lo, const Vec3d& size) -> void {
+    const auto visit = [this](auto&& self, std::uint32_t index, const Vec3d& lo, const Vec3d& size) -> void {
+      const Node& node = m_nodes[index];
       if (node.kind != refined) {
-        m_leaf_boxes[node.index] = {lo, lo + size};
+        m_leaf_boxes[m_leaf_of_node[index]] = {lo, lo + size};
         return;
       }
       const Vec3d l{sub_cell_size(size.x, node.n[0]), sub_cell_size(size.y, node.n[1]), sub_cell_size(size.z, node.n[2])};
@@ -42,13 +43,13 @@ CellBox NestedGrid::cell_box(std::uint64_t i) const {
       for (int z = 0; z < node.n[2]; ++z)
         for (int y = 0; y < node.n[1]; ++y)
           for (int x = 0; x < node.n[0]; ++x, ++child)
-            self(self, m_nodes[child], lo + Vec3d{double(x), double(y), double(z)} * l, l);
+            self(self, child, lo + Vec3d{double(x), double(y), double(z)} * l, l);
     };
     std::uint64_t c = 0;
     for (int z = 0; z < g.resolution.nz; ++z)
       for (int y = 0; y < g.resolution.ny; ++y)
         for (int x = 0; x < g.resolution.nx; ++x, ++c)
-          visit(visit, m_nodes[c], g.lo + Vec3d{double(x), double(y), double(z)} * g.cell_size, g.cell_size);
+          visit(visit, std::uint32_t(c), g.lo + Vec3d{double(x), double(y), double(z)} * g.cell_size, g.cell_size);
   });
   return m_leaf_boxes[i];
 }

@@ -223,7 +223,8 @@ NestedGrid::NestedGrid(std::span<const Triangle> triangles, const Grid2Options& 
     (a == 0 ? g.cell_size.x : a == 1 ? g.cell_size.y : g.cell_size.z) = l;
     (a == 0 ? m_inv_top.x : a == 1 ? m_inv_top.y : m_inv_top.z) = 1.0 / l;
   }
-  const std::uint64_t top_bytes = top_cells * (sizeof(Node) + sizeof(std::uint32_t));
+  // A top cell's node, its leaf number and (as a leaf) its offset.
+  const std::uint64_t top_bytes = top_cells * (sizeof(Node) + 2 * sizeof(std::uint32_t));
   if (top_bytes > options.max_bytes)
     throw InputError("grid2: a top grid of " + g.resolution.to_string() + " cells needs " + byte_size(top_bytes) +
                      ", over --grid-max-bytes (" + byte_size(options.max_bytes) + ")");
@@ -293,11 +294,13 @@ NestedGrid::NestedGrid(std::span<const Triangle> triangles, const Grid2Options& 
     ref_base[c + 1] = ref_base[c] + (top_leaf ? top_offsets[c + 1] - top_offsets[c] : trees[c].refs.size());
     for (int k = 0; k < kMaxGrid2Levels; ++k) {
       m_info.refined += trees[c].refined[k];
-      m_info.level[k].bytes += trees[c].refined[k] * sizeof(Node);  // a refined cell's node is its level's
+      // A refined cell's node and its entry in m_leaf_of_node are its level's.
+      m_info.level[k].bytes += trees[c].refined[k] * (sizeof(Node) + sizeof(std::uint32_t));
     }
   }
   const std::uint64_t nodes = node_base[top_cells], leaves = leaf_base[top_cells], refs = ref_base[top_cells];
-  const std::uint64_t bytes = nodes * sizeof(Node) + (leaves + 1) * sizeof(std::uint32_t) + refs * sizeof(TriangleId);
+  const std::uint64_t bytes = nodes * (sizeof(Node) + sizeof(std::uint32_t)) + (leaves + 1) * sizeof(std::uint32_t) +
+                              refs * sizeof(TriangleId);
   if (nodes >= std::numeric_limits<std::uint32_t>::max() || refs >= std::numeric_limits<std::uint32_t>::max() ||
       bytes > options.max_bytes)
     throw InputError("grid2: " + std::to_string(leaves) + " leaves holding " + std::to_string(refs) +
@@ -305,6 +308,7 @@ NestedGrid::NestedGrid(std::span<const Triangle> triangles, const Grid2Options& 
                      byte_size(options.max_bytes) + ") or 2^32 - 1 cells or references");
   m_nodes.resize(nodes);
   m_offsets.resize(leaves + 1);
+  m_leaf_of_node.resize(nodes);
   m_refs.resize(refs);
   m_leaf_level.resize(leaves);
   kappa::parallel_for(std::uint64_t(0), top_cells, [&](std::uint64_t c) {
@@ -333,6 +337,23 @@ NestedGrid::NestedGrid(std::span<const Triangle> triangles, const Grid2Options& 
     std::copy(tree.refs.begin(), tree.refs.end(), m_refs.begin() + std::ptrdiff_t(ref_base[c]));
   });
   m_offsets[leaves] = std::uint32_t(refs);
+  // The walk's form of the leaves: a list's bounds in its node, its leaf
+  // number beside it (grid2.h, Node).
+  kappa::parallel_for(tbb::blocked_range<std::uint64_t>(0, nodes), [&](const auto& range) {
+    for (std::uint64_t i = range.begin(); i != range.end(); ++i) {
+      Node& node = m_nodes[i];
+      if (node.kind == NestedGrid::refined) {
+        m_leaf_of_node[i] = NestedGrid::kNoLeaf;
+        continue;
+      }
+      const std::uint32_t leaf = node.index;
+      m_leaf_of_node[i] = leaf;
+      const std::uint32_t begin = m_offsets[leaf], size = m_offsets[leaf + 1] - begin;
+      node.index = begin;
+      node.n[0] = std::uint8_t(std::min(size, NestedGrid::kLongList));
+      node.n[1] = node.n[2] = 0;
+    }
+  });
   std::vector<TriangleId>().swap(top_lists);
   std::vector<LocalTree>().swap(trees);
 
@@ -345,7 +366,7 @@ NestedGrid::NestedGrid(std::span<const Triangle> triangles, const Grid2Options& 
     Grid2Level& level = m_info.level[m_leaf_level[i]];
     ++level.N_c;
     level.theta_tot += n;
-    level.bytes += sizeof(Node) + sizeof(std::uint32_t) + n * sizeof(TriangleId);
+    level.bytes += sizeof(Node) + 2 * sizeof(std::uint32_t) + n * sizeof(TriangleId);
     m_info.max_occupancy = std::max(m_info.max_occupancy, n);
     m_info.empty_leaves += n == 0;
     m_info.levels = std::max(m_info.levels, int(m_leaf_level[i]) + 1);

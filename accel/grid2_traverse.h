@@ -26,8 +26,10 @@ struct Grid2Walk {
   /// Without a recorder nothing reads the counts, and the walk keeps none.
   static constexpr bool Records = !std::is_same_v<Recorder, NoRecorder>;
 
-  Grid2Walk(const Ray& r, Hit& b, Recorder& rec, const Triangle* tris, const std::uint32_t* offs, const TriangleId* ids)
-      : ray(r), prepared(r), best(b), recorder(rec), triangles(tris), offsets(offs), refs(ids), o(r.o), d(r.d) {}
+  Grid2Walk(const Ray& r, Hit& b, Recorder& rec, const Triangle* tris, const std::uint32_t* offs,
+            const std::uint32_t* leaves, const TriangleId* ids)
+      : ray(r), prepared(r), best(b), recorder(rec), triangles(tris), offsets(offs), leaf_of_node(leaves), refs(ids),
+        o(r.o), d(r.d) {}
 
   const Ray& ray;
   const PreparedRay prepared;
@@ -35,6 +37,7 @@ struct Grid2Walk {
   Recorder& recorder;
   const Triangle* triangles;
   const std::uint32_t* offsets;
+  const std::uint32_t* leaf_of_node;
   const TriangleId* refs;
   Vec3d o, d;
   double inv_d[3] = {0, 0, 0};
@@ -43,20 +46,19 @@ struct Grid2Walk {
   Mailbox mailbox;
   WalkCounts counts;
 
-  /// Enters leaf `leaf` of `level` and tests its triangles; true when an
-  /// any-hit walk is done.
+  /// Enters the leaf of node `index` (`node`) at `Level` and tests its
+  /// triangles; true when an any-hit walk is done.
   template <int Level, class BoxFn>
-  [[gnu::always_inline]] bool visit_leaf(const NestedGrid::Node& node, BoxFn&& box) {
+  [[gnu::always_inline]] bool visit_leaf(const NestedGrid::Node& node, std::int64_t index, BoxFn&& box) {
     constexpr int level = Level;
-    const std::uint32_t leaf = node.index;
     if constexpr (Records) {
       ++counts.cells;
       ++counts.level_cells[level];
+      recorder.cell(leaf_of_node[index], level, box);
     }
-    recorder.cell(leaf, level, box);
     if (node.kind == NestedGrid::empty) return false;
-    const std::uint32_t begin = offsets[leaf], end = offsets[leaf + 1];
-    if (begin == end) return false;
+    const std::uint32_t begin = node.index, size = node.n[0];
+    const std::uint32_t end = size != NestedGrid::kLongList ? begin + size : offsets[leaf_of_node[index] + 1];
     if constexpr (!Records) return test_four_at_a_time(begin, end);
     ++counts.occupied;
     counts.refs += end - begin;
@@ -188,7 +190,7 @@ bool NestedGrid::walk_sub_grid(const Node& node, const double lo[3], const doubl
   while (true) {
     const Node& c = m_nodes[std::size_t(child)];
     if (c.kind != refined) {
-      if (w.template visit_leaf<Level>(c, [&] {
+      if (w.template visit_leaf<Level>(c, child, [&] {
             const Vec3d cell_lo{lo[0] + s[0] * l[0], lo[1] + s[1] * l[1], lo[2] + s[2] * l[2]};
             return CellBox{cell_lo, cell_lo + Vec3d{l[0], l[1], l[2]}};
           }))
@@ -217,7 +219,8 @@ bool NestedGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const {
   if (m_refs.empty() || !is_finite(ray.o) || !is_finite(ray.d) || ray.d == Vec3f{0, 0, 0}) return false;
   if (!(ray.tmin <= ray.tmax)) return false;
   const GridInfo& g = m_info.top;
-  detail::Grid2Walk<Mode, Recorder> w(ray, best, recorder, m_triangles.data(), m_offsets.data(), m_refs.data());
+  detail::Grid2Walk<Mode, Recorder> w(ray, best, recorder, m_triangles.data(), m_offsets.data(), m_leaf_of_node.data(),
+                                      m_refs.data());
   const Vec3d& o = w.o;
   const Vec3d& d = w.d;
 
@@ -284,7 +287,7 @@ bool NestedGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const {
   while (true) {
     const Node& top = m_nodes[std::size_t(c)];
     if (top.kind != refined) {
-      if (w.template visit_leaf<0>(top, [&] {
+      if (w.template visit_leaf<0>(top, c, [&] {
             const Vec3d lo = g.lo + Vec3d{double(ix), double(iy), double(iz)} * g.cell_size;
             return CellBox{lo, lo + g.cell_size};
           }))
