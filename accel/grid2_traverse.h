@@ -59,7 +59,17 @@ struct Grid2Walk {
     if (node.kind == NestedGrid::empty) return false;
     const std::uint32_t begin = node.index, size = node.n[0];
     const std::uint32_t end = size != NestedGrid::kLongList ? begin + size : offsets[leaf_of_node[index] + 1];
-    if constexpr (!Records) return test_four_at_a_time(begin, end);
+    if constexpr (Records)
+      return test_one_at_a_time<Level>(begin, end);
+    else
+      return test_four_at_a_time(begin, end);
+  }
+
+  /// A leaf's list as a recorder sees it: each test counted and recorded as
+  /// it is made; true when an any-hit walk is done.
+  template <int Level>
+  [[gnu::always_inline]] bool test_one_at_a_time(std::uint32_t begin, std::uint32_t end) {
+    constexpr int level = Level;
     ++counts.occupied;
     counts.refs += end - begin;
     counts.level_refs[level] += end - begin;

@@ -117,8 +117,6 @@ struct PreparedRay {
   return true;
 }
 
-/// Closest-hit update shared by the exact accelerators: tests one triangle and
-/// keeps it if it is closer under closer_than's tie rule.
 /// The tmax a closest-hit walk tests its next triangle with. The range test
 /// before the division rounds differently from t itself, so a triangle at
 /// exactly best.t could be cut by it, and which of two equal-t triangles
@@ -129,6 +127,8 @@ struct PreparedRay {
   return best.t * (1.0f + 8.0f * std::numeric_limits<float>::epsilon());
 }
 
+/// Closest-hit update shared by the exact accelerators: tests one triangle and
+/// keeps it if it is closer under closer_than's tie rule.
 [[gnu::always_inline]] inline void test_closest(const PreparedRay& r, const Triangle& tri, TriangleId id, float tmin, Hit& best) {
   float t, b0, b1, b2;
   if (intersect_triangle(r, tri, tmin, closest_limit(best), t, b0, b1, b2) && closer_than(t, id, best)) {
