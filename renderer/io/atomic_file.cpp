@@ -12,6 +12,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "renderer/io/output_target.h"
 #include "renderer/util/error.h"
 
 namespace kappa {
@@ -73,42 +74,36 @@ void release_slot(int i) {
 
 AtomicOutput::AtomicOutput(const std::filesystem::path& target, OutputKind kind) : m_target(target) {
   std::call_once(g_handlers_installed, install_handlers);
-  std::error_code ec;
-  // A link is written through, never replaced: the temporary goes beside the
-  // file it points to (/dev/stdout -> /proc/self/fd/1 -> a file must not
-  // become a regular file in /dev).
-  if (std::filesystem::is_symlink(target, ec)) {
-    const std::filesystem::path real = std::filesystem::weakly_canonical(target, ec);
-    if (!ec && !real.empty()) m_target = real;
-  }
-  const auto status = std::filesystem::status(target, ec);  // follows links
-  using std::filesystem::file_type;
-  switch (status.type()) {
-    case file_type::directory: fail(target, 0, "cannot write: it is a directory");
-    case file_type::socket: fail(target, 0, "cannot write: it is a socket");
-    case file_type::block: fail(target, 0, "cannot write: it is a block device");
-    case file_type::character:
-    case file_type::fifo:
+  // Where the path leads, links followed and never replaced (output_target.h).
+  const OutputTarget where = resolve_output_target(target);
+  using Kind = OutputTarget::Kind;
+  switch (where.kind) {
+    case Kind::descriptor:
+      if (kind == OutputKind::image)
+        fail(target, 0, "cannot write an image to " + descriptor_name(where.descriptor) + ": give a file name");
+      // A copy of the descriptor, so the output stays what it was when the
+      // run started.
+      m_descriptor = ::fcntl(where.descriptor, F_DUPFD_CLOEXEC, 3);
+      if (m_descriptor < 0) fail(target, 0, std::string("cannot write: ") + std::strerror(errno));
+      m_direct = true;
+      m_committed = true;  // nothing to remove
+      return;
+    case Kind::device:
       if (kind == OutputKind::image) fail(target, 0, "cannot write an image to a device or FIFO: give a file name");
       // Written as it is: no temporary, no rename over the node.
       m_direct = true;
-      m_target = m_temp = target;
+      m_final = m_temp = where.path;
       m_committed = true;  // nothing to remove
       return;
-    default:
+    case Kind::new_file:
+    case Kind::file:
       break;
   }
-  const std::filesystem::path dir = m_target.parent_path().empty() ? "." : m_target.parent_path();
-  if (!std::filesystem::is_directory(dir, ec)) {
-    // A folder that cannot be looked into (EACCES) is not one that is missing.
-    if (ec && ec != std::errc::no_such_file_or_directory)
-      fail(target, 0, "cannot write: folder '" + dir.string() + "': " + ec.message());
-    fail(target, 0, "cannot write: folder '" + dir.string() + "' does not exist");
-  }
-  // Same folder as the target, so the final rename cannot cross file systems;
-  // the .exr ending keeps format detection by extension working.
-  m_temp = dir / ("." + m_target.filename().string() + ".kappa-" + std::to_string(::getpid()) + ".tmp" +
-                  m_target.extension().string());
+  m_final = where.path;
+  // Same folder as the file written, so the final rename cannot cross file
+  // systems; the .exr ending keeps format detection by extension working.
+  m_temp = m_final.parent_path() / ("." + m_final.filename().string() + ".kappa-" + std::to_string(::getpid()) +
+                                    ".tmp" + m_final.extension().string());
   // Registered for the signal handler before it exists, so no interrupt can
   // leave it behind.
   m_slot = claim_slot(m_temp.string());
@@ -125,6 +120,7 @@ AtomicOutput::AtomicOutput(const std::filesystem::path& target, OutputKind kind)
 }
 
 AtomicOutput::~AtomicOutput() {
+  if (m_descriptor >= 0) ::close(m_descriptor);
   if (m_direct) return;
   if (!m_committed) ::unlink(m_temp.c_str());
   if (m_slot >= 0) release_slot(m_slot);
@@ -147,6 +143,18 @@ void write_and_commit(AtomicOutput& output, const std::string& text) {
 }
 
 void write_temporary(AtomicOutput& output, const std::string& text) {
+  if (output.descriptor() >= 0) {
+    // Written straight to the descriptor: a pipe whose reader went away, or
+    // a full disk behind `>> log`, is not the input's fault (exit 1).
+    for (std::size_t done = 0; done < text.size();) {
+      const ssize_t n = ::write(output.descriptor(), text.data() + done, text.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0)
+        throw std::runtime_error(output.target().string() + ": cannot write (" + std::strerror(n < 0 ? errno : EIO) + ")");
+      done += std::size_t(n);
+    }
+    return;
+  }
   {
     std::ofstream out(output.temp_path(), std::ios::binary);
     out << text;
@@ -173,7 +181,7 @@ void AtomicOutput::commit() {
     ::close(fd);
     if (synced != 0 && err != EINVAL) fail_output(m_target, "cannot write", err);  // EINVAL: cannot sync, not a failed write
   }
-  if (std::rename(m_temp.c_str(), m_target.c_str()) != 0) fail_output(m_target, "cannot replace", errno);
+  if (std::rename(m_temp.c_str(), m_final.c_str()) != 0) fail_output(m_target, "cannot replace", errno);
   m_committed = true;
 }
 

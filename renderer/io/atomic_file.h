@@ -1,10 +1,12 @@
-// Output files appear whole or not at all: written to a temporary file in the
-// target folder and renamed over the target only once complete. The temporary
-// is removed on failure, on destruction, and on SIGINT/SIGTERM/SIGHUP.
-// A text output (a JSON report) that names a character device or a FIFO
-// (/dev/stdout, a pipe) is written to it directly: renaming a temporary over
-// it would replace the device node. Images must be regular files or new
-// paths; directories, sockets and block devices are refused for every output.
+// Output files appear whole or not at all: written to a temporary file beside
+// the file written and renamed over it only once complete. The temporary is
+// removed on failure, on destruction, and on SIGINT/SIGTERM/SIGHUP.
+// A symbolic link is written through, never replaced (output_target.h). A
+// text output (a JSON report) that names a character device, a FIFO or one of
+// the process's descriptors (/dev/stdout, "-") is written to it directly:
+// renaming a temporary over it would replace the node or the file behind the
+// descriptor. Images must be regular files or new paths; directories, sockets
+// and block devices are refused for every output.
 #pragma once
 
 #include <filesystem>
@@ -26,17 +28,25 @@ class AtomicOutput {
   AtomicOutput(const AtomicOutput&) = delete;
   AtomicOutput& operator=(const AtomicOutput&) = delete;
 
+  /// Where the text or image is written: the temporary, or the device or
+  /// FIFO itself (empty for a descriptor: write_temporary writes to it).
   const std::filesystem::path& temp_path() const { return m_temp; }
+  /// The path as given, for messages.
   const std::filesystem::path& target() const { return m_target; }
-  /// Written straight to a device or FIFO (no temporary).
+  /// Written straight to a device, FIFO or descriptor (no temporary).
   bool direct() const { return m_direct; }
+  /// The descriptor written to (a copy of the one the path led to), or -1.
+  int descriptor() const { return m_descriptor; }
 
   /// Renames the finished temporary over the target (throws InputError).
   void commit();
 
  private:
-  std::filesystem::path m_target, m_temp;
-  bool m_direct = false;  ///< written straight to a device or FIFO: no temporary
+  std::filesystem::path m_target;  ///< as given
+  std::filesystem::path m_final;   ///< the file the links lead to, renamed over at commit
+  std::filesystem::path m_temp;
+  int m_descriptor = -1;
+  bool m_direct = false;  ///< written straight to a device, FIFO or descriptor: no temporary
   int m_slot = -1;  ///< entry in the signal handler's cleanup table
   bool m_committed = false;
 };

@@ -1,11 +1,14 @@
 // Hostile input, as the README's policy table classes it: an output never
-// replaces an input or another output; a device or FIFO gets a text output
-// written to it directly, never replaced, and never an image; reading never
-// hangs on a FIFO or a device, nor reads an oversized file.
+// replaces an input or another output; a device, FIFO or descriptor gets a
+// text output written to it directly, never replaced, and never an image; a
+// link is written through or refused, never replaced; reading never hangs on
+// a FIFO or a device, nor reads an oversized file. No test here uses the
+// machine's own /dev/stdout: they make their own links to /proc/self/fd/N.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -93,23 +96,53 @@ TEST(HostileInput, NoTwoOutputsOfARunShareAFile) {
   EXPECT_FALSE(fs::exists(tmp / "x.exr"));
 }
 
-// Class: a device or FIFO is written in place (text) or refused (images), never replaced.
+/// A link in `dir` to /proc/self/fd/N: what /dev/stdout is for N = 1, made
+/// here so that no test touches the machine's own /dev/stdout.
+fs::path descriptor_link(const TempDir& dir, int descriptor) {
+  const fs::path link = dir / ("fd" + std::to_string(descriptor));
+  fs::create_symlink("/proc/self/fd/" + std::to_string(descriptor), link);
+  return link;
+}
+
+/// Runs `script` with bash, in `dir` as its working directory, and returns
+/// its exit code (-1 if killed).
+int run_bash(const TempDir& dir, const std::string& script) {
+  write_file(dir / "run.sh", script + "\n");
+  const int status = std::system(("cd '" + dir.path().string() + "' && bash run.sh").c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+
+/// The shell command of a 64x64, 4-spp render of `scene` into `out`.
+std::string render_command(const fs::path& scene, const fs::path& out) {
+  return std::string(KAPPA_BINARY) + " render " + quoted(scene) + " --spp 4 --width 64 --height 64 -q --out " +
+         quoted(out);
+}
+
+// Class: a device, FIFO or descriptor is written in place (text) or refused
+// (images), never replaced.
 TEST(HostileInput, TextOutputsGoStraightToDevicesAndFifos) {
   TempDir tmp;
   const fs::path scene = copy_cornell(tmp.path());
-  // /dev/stdout is a link: written through (here to the file the harness
-  // captures stdout in), the link itself never replaced.
-  const RunResult r = run_kappa(cheap_render(scene, tmp / "x.exr", {"--report", "/dev/stdout"}), tmp.path());
+  const fs::path stdout_link = descriptor_link(tmp, 1);
+  // Standard output through a link, as /dev/stdout is: the report lands in
+  // the file the harness captures stdout in, and the link stays a link.
+  const RunResult r = run_kappa(cheap_render(scene, tmp / "x.exr", {"--report", stdout_link.string()}), tmp.path());
   EXPECT_EQ(r.exit_code, 0) << r.std_err;
   EXPECT_NE(r.std_out.find("\"schema_version\""), std::string::npos) << r.std_out;
-  EXPECT_TRUE(fs::is_symlink("/dev/stdout"));
+  EXPECT_TRUE(fs::is_symlink(stdout_link));
+  // "-" is standard output too.
+  const RunResult dash = run_kappa(cheap_render(scene, tmp / "x.exr", {"--report", "-"}), tmp.path());
+  EXPECT_EQ(dash.exit_code, 0) << dash.std_err;
+  EXPECT_NE(dash.std_out.find("\"schema_version\""), std::string::npos) << dash.std_out;
+  EXPECT_FALSE(fs::exists(tmp / "-"));
   // Through a pipe (a FIFO): written in place.
-  const std::string cmd = std::string(KAPPA_BINARY) + " render '" + scene.string() +
-                          "' --spp 1 --width 8 --height 8 -q --out '" + (tmp / "p.exr").string() +
-                          "' --report /dev/stdout | grep -c schema_version > '" + (tmp / "count").string() + "'";
-  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  ASSERT_EQ(run_bash(tmp, render_command(scene, tmp / "p.exr") + " --report " + quoted(stdout_link) +
+                              " | grep -c schema_version > " + quoted(tmp / "count")),
+            0);
   EXPECT_EQ(read_file(tmp / "count"), "1\n");
-  EXPECT_TRUE(fs::is_symlink("/dev/stdout"));
+  EXPECT_TRUE(fs::is_symlink(stdout_link));
 
   // A FIFO with a reader: the report arrives through it, and it stays a FIFO.
   ASSERT_EQ(::mkfifo((tmp / "report.fifo").c_str(), 0600), 0);
@@ -121,6 +154,96 @@ TEST(HostileInput, TextOutputsGoStraightToDevicesAndFifos) {
   EXPECT_EQ(f.exit_code, 0) << f.std_err;
   EXPECT_NE(received.find("\"schema_version\""), std::string::npos);
   EXPECT_TRUE(fs::is_fifo(tmp / "report.fifo"));
+}
+
+// Standard output appended to a log: the report is appended to the same file
+// (same inode, the log's first line kept), not renamed over it.
+TEST(HostileInput, AReportIntoStdoutAppendedToALogKeepsTheLog) {
+  TempDir tmp;
+  const fs::path scene = copy_cornell(tmp.path());
+  const fs::path stdout_link = descriptor_link(tmp, 1);
+  write_file(tmp / "log", "the log's first line\n");
+  struct stat before {};
+  ASSERT_EQ(::stat((tmp / "log").c_str(), &before), 0);
+  ASSERT_EQ(run_bash(tmp, render_command(scene, tmp / "x.exr") + " --report " + quoted(stdout_link) + " >> " +
+                              quoted(tmp / "log")),
+            0);
+  struct stat after {};
+  ASSERT_EQ(::stat((tmp / "log").c_str(), &after), 0);
+  EXPECT_EQ(after.st_ino, before.st_ino) << "the log was replaced";
+  const std::string log = read_file(tmp / "log");
+  EXPECT_EQ(log.rfind("the log's first line\n{", 0), 0u) << log.substr(0, 200);
+  EXPECT_NE(log.find("\"schema_version\""), std::string::npos);
+}
+
+// A link that leads nowhere (a closed descriptor behind it, dangling, a
+// loop) is refused before the render, with one line, and stays as it was.
+TEST(HostileInput, AnOutputLinkThatLeadsNowhereIsRefusedBeforeRendering) {
+  TempDir tmp;
+  const fs::path scene = copy_cornell(tmp.path());
+  const fs::path stdout_link = descriptor_link(tmp, 1);
+  const fs::path fd7_link = descriptor_link(tmp, 7);
+  fs::create_symlink("nothing.json", tmp / "dangling.json");
+  fs::create_symlink("loop_b", tmp / "loop_a");
+  fs::create_symlink("loop_a", tmp / "loop_b");
+  struct Case {
+    std::string redirect;  // of kappa's standard output
+    fs::path report;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {">&-", stdout_link, "fd1: cannot write: it leads to standard output, which is closed"},
+      {">&-", "-", "-: cannot write: it leads to standard output, which is closed"},
+      {"", fd7_link, "fd7: cannot write: it leads to descriptor 7, which is closed"},
+      {"", tmp / "dangling.json", "a symbolic link to 'nothing.json', which does not exist"},
+      {"", tmp / "loop_a", "a loop of symbolic links"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.report);
+    const int code = run_bash(tmp, render_command(scene, tmp / "x.exr") + " --report " + quoted(c.report) + " " +
+                                       c.redirect + " 2> " + quoted(tmp / "err"));
+    const std::string err = read_file(tmp / "err");
+    EXPECT_EQ(code, 2) << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    EXPECT_NE(err.find(c.says), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(tmp / "x.exr")) << "refused after rendering";
+  }
+  EXPECT_TRUE(fs::is_symlink(stdout_link));
+  EXPECT_EQ(fs::read_symlink(tmp / "dangling.json"), "nothing.json");
+  EXPECT_FALSE(fs::exists(tmp / "nothing.json"));
+  EXPECT_TRUE(fs::is_symlink(tmp / "loop_a"));
+  // An image output through a dangling link is refused too.
+  const RunResult image = run_kappa(cheap_render(scene, tmp / "dangling.json"), tmp.path());
+  EXPECT_EQ(image.exit_code, 2) << image.std_err;
+  EXPECT_TRUE(fs::is_symlink(tmp / "dangling.json"));
+}
+
+// The issue's own command, on the path /dev/stdout itself: in a private mount
+// namespace whose /dev is this test's folder, so the machine's /dev/stdout is
+// never at risk. Skipped where mount namespaces are refused.
+TEST(HostileInput, TheIssuesCommandLeavesDevStdoutALink) {
+  TempDir tmp;
+  const fs::path scene = copy_cornell(tmp.path());
+  if (run_bash(tmp, "unshare -m true 2>/dev/null") != 0) GTEST_SKIP() << "unshare -m is refused here";
+  const fs::path dev = tmp / "dev";
+  fs::create_directory(dev);
+  std::string script = "set -e\n";
+  for (const char* node : {"null", "zero", "urandom", "random"})
+    script += "touch " + quoted(dev / node) + "; mount --bind /dev/" + node + " " + quoted(dev / node) + "\n";
+  script += "ln -s /proc/self/fd/1 " + quoted(dev / "stdout") + "\n";
+  script += "mount --bind " + quoted(dev) + " /dev\n";
+  script += "set +e\n";
+  script += render_command(scene, tmp / "y.exr") + " --report /dev/stdout >&- 2> " + quoted(tmp / "err") + "\n";
+  script += "echo $? > " + quoted(tmp / "code") + "\n";
+  script += "ls -la /dev/stdout > " + quoted(tmp / "ls") + "\n";
+  write_file(tmp / "inside.sh", script);
+  ASSERT_EQ(run_bash(tmp, "unshare -m bash " + quoted(tmp / "inside.sh")), 0) << read_file(tmp / "err");
+  const std::string err = read_file(tmp / "err");
+  EXPECT_EQ(read_file(tmp / "code"), "2\n") << err;
+  EXPECT_EQ(err, "kappa: error: /dev/stdout: cannot write: it leads to standard output, which is closed\n");
+  EXPECT_NE(read_file(tmp / "ls").find("/dev/stdout -> /proc/self/fd/1"), std::string::npos) << read_file(tmp / "ls");
+  EXPECT_TRUE(fs::is_symlink(dev / "stdout"));
+  EXPECT_FALSE(fs::exists(tmp / "y.exr"));
 }
 
 TEST(HostileInput, ImagesAreNeverWrittenToDevicesAndNothingIsReplaced) {
@@ -144,13 +267,10 @@ TEST(HostileInput, AReportIntoAClosedPipeExitsOneInsteadOfDying) {
   TempDir tmp;
   const fs::path scene = copy_cornell(tmp.path());
   // `true` exits at once: the report's write meets a closed pipe.
-  const std::string cmd = std::string(KAPPA_BINARY) + " render '" + scene.string() +
-                          "' --spp 4 --width 64 --height 64 -q --out '" + (tmp / "x.exr").string() +
-                          "' --report /dev/stdout 2>'" + (tmp / "err").string() + "' | true; exit ${PIPESTATUS[0]}";
-  write_file(tmp / "run.sh", cmd + "\n");
-  const int status = std::system(("bash '" + (tmp / "run.sh").string() + "'").c_str());
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 1) << read_file(tmp / "err");
+  const int code = run_bash(tmp, render_command(scene, tmp / "x.exr") + " --report " +
+                                     quoted(descriptor_link(tmp, 1)) + " 2>" + quoted(tmp / "err") +
+                                     " | true; exit ${PIPESTATUS[0]}");
+  EXPECT_EQ(code, 1) << read_file(tmp / "err");
   EXPECT_NE(read_file(tmp / "err").find("Broken pipe"), std::string::npos) << read_file(tmp / "err");
 }
 
