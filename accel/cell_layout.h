@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "core/vec3.h"
 #include "recorder.h"
-#include "vec3.h"
 
 namespace kappa {
 

@@ -9,8 +9,8 @@
 
 #include <tbb/parallel_for.h>
 
-#include "float_util.h"
-#include "parallel.h"
+#include "core/float_util.h"
+#include "core/parallel.h"
 
 namespace kappa {
 namespace {

@@ -21,7 +21,7 @@
 #include <string>
 
 #include "accel.h"
-#include "task_progress.h"
+#include "core/task_progress.h"
 
 namespace kappa {
 

@@ -2,10 +2,10 @@
 
 #include <stdexcept>
 
+#include "core/input_error.h"
 #include "embree.h"
 #include "grid.h"
 #include "grid2.h"
-#include "input_error.h"
 #include "naive.h"
 
 namespace kappa {

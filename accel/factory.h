@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "accel.h"
+#include "core/task_progress.h"
 #include "grid.h"
 #include "grid2.h"
-#include "task_progress.h"
 
 namespace kappa {
 

@@ -19,9 +19,9 @@
 
 #include "accel.h"
 #include "cell_layout.h"
+#include "core/huge_pages.h"
+#include "core/task_progress.h"
 #include "grid_resolution.h"
-#include "huge_pages.h"
-#include "task_progress.h"
 
 namespace kappa {
 

@@ -29,11 +29,11 @@
 
 #include "accel.h"
 #include "cell_layout.h"
+#include "core/huge_pages.h"
+#include "core/task_progress.h"
 #include "grid.h"
 #include "grid_resolution.h"
-#include "huge_pages.h"
 #include "recorder.h"
-#include "task_progress.h"
 
 namespace kappa {
 

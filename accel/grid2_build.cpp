@@ -13,12 +13,12 @@
 #include <cmath>
 #include <limits>
 
-#include "byte_size.h"
-#include "check.h"
+#include "core/byte_size.h"
+#include "core/check.h"
+#include "core/input_error.h"
+#include "core/parallel.h"
 #include "grid2.h"
 #include "grid_insert.h"
-#include "input_error.h"
-#include "parallel.h"
 
 namespace kappa {
 namespace {

@@ -14,13 +14,13 @@
 #include <utility>
 #include <vector>
 
-#include "byte_size.h"
-#include "check.h"
+#include "core/byte_size.h"
+#include "core/check.h"
+#include "core/input_error.h"
+#include "core/parallel.h"
+#include "core/physical_memory.h"
 #include "grid.h"
-#include "input_error.h"
-#include "physical_memory.h"
 #include "grid_insert.h"
-#include "parallel.h"
 
 namespace kappa {
 namespace {

@@ -3,7 +3,7 @@
 #include <charconv>
 #include <cmath>
 
-#include "input_error.h"
+#include "core/input_error.h"
 
 namespace kappa {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "vec3.h"
+#include "core/vec3.h"
 
 namespace kappa {
 

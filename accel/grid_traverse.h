@@ -11,8 +11,8 @@
 #include <limits>
 #include <type_traits>
 
+#include "core/check.h"
 #include "grid.h"
-#include "check.h"
 #include "recorder.h"
 
 namespace kappa {

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "vec3.h"
+#include "core/vec3.h"
 
 namespace kappa {
 

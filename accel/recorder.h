@@ -20,7 +20,7 @@
 
 #include <cstdint>
 
-#include "vec3.h"
+#include "core/vec3.h"
 
 namespace kappa {
 

@@ -11,9 +11,9 @@
 #include <limits>
 #include <utility>
 
-#include "float_util.h"
+#include "core/float_util.h"
+#include "core/vec3.h"
 #include "ray.h"
-#include "vec3.h"
 
 namespace kappa {
 

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "vec3.h"
+#include "core/vec3.h"
 
 namespace kappa {
 

@@ -1,4 +1,4 @@
-#include "renderer/util/error.h"
+#include "core/error.h"
 
 #include <cstdio>
 #include <cstring>

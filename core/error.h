@@ -1,4 +1,4 @@
-// Errors in user input (InputError, accel/input_error.h): one-line messages
+// Errors in user input (InputError, core/input_error.h): one-line messages
 // naming the file (and line), which the command line prints and turns into
 // exit code 2; and reading the input files they name.
 #pragma once
@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "accel/input_error.h"
-#include "accel/input_file.h"  // read_input_file: every reader's one check
+#include "core/input_error.h"
+#include "core/input_file.h"  // read_input_file: every reader's one check
 
 namespace kappa {
 

@@ -1,4 +1,4 @@
-#include "input_file.h"
+#include "core/input_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "input_error.h"
+#include "core/input_error.h"
 
 namespace kappa {
 namespace {

@@ -14,7 +14,7 @@
 // these loops as they bound TBB's.
 #pragma once
 
-#include "accel/thread_limit.h"
+#include "core/thread_limit.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "accel/input_error.h"
-#include "accel/input_file.h"
+#include "core/input_error.h"
+#include "core/input_file.h"
 
 namespace kappa {
 

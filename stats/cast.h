@@ -17,14 +17,14 @@
 #include <vector>
 
 #include "accel/cell_layout.h"
-#include "accel/hash.h"
 #include "accel/ray.h"
 #include "accel/recorder.h"
-#include "accel/thread_limit.h"
 #include "collusion.h"
+#include "core/hash.h"
+#include "core/parallel.h"
+#include "core/thread_limit.h"
 #include "counters.h"
 #include "per_cell_budget.h"
-#include "accel/parallel.h"
 
 namespace kappa {
 
@@ -98,7 +98,7 @@ void walk_all(const Walker& walker, std::span<const Ray> rays, GridWalk walk, st
 /// Walks every ray (to its closest hit, to any hit, or along its whole
 /// chord) of a CellWalker (accel/dispatch.h) with thread-local counters
 /// merged once at the end, on as many threads as the caller's ThreadLimit
-/// allows (accel/thread_limit.h). Totals do not depend on the thread count.
+/// allows (core/thread_limit.h). Totals do not depend on the thread count.
 /// Per-cell counts follow plan_per_cell within `max_bytes` beside the
 /// walker's structure: every ray into per-thread arrays, or 1 ray in 64 into
 /// one shared set (stats_note says so), or none (p_tot, refs_per_ray and

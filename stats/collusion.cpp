@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "accel/check.h"
+#include "core/check.h"
 
 namespace kappa {
 

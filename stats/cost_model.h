@@ -13,7 +13,7 @@
 
 #include "accel/recorder.h"
 #include "accel/triangle.h"
-#include "accel/vec3.h"
+#include "core/vec3.h"
 
 namespace kappa {
 

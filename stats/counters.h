@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "accel/recorder.h"
-#include "accel/vec3.h"
+#include "core/vec3.h"
 #include "cost_model.h"
 #include "split_counts.h"
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 
 #include "accel/grid2_traverse.h"
-#include "accel/parallel.h"
+#include "core/parallel.h"
 
 namespace kappa {
 namespace {

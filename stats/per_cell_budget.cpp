@@ -1,6 +1,6 @@
 #include "per_cell_budget.h"
 
-#include "accel/byte_size.h"
+#include "core/byte_size.h"
 
 namespace kappa {
 

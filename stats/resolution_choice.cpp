@@ -10,11 +10,11 @@
 #include <functional>
 #include <limits>
 
-#include "accel/check.h"
 #include "accel/grid_traverse.h"
-#include "accel/input_error.h"
-#include "accel/parallel.h"
 #include "accel/triangle.h"
+#include "core/check.h"
+#include "core/input_error.h"
+#include "core/parallel.h"
 
 namespace kappa {
 namespace {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "accel/ray.h"
-#include "accel/vec3.h"
+#include "core/vec3.h"
 
 namespace kappa {
 

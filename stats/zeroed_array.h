@@ -2,12 +2,12 @@
 // anonymous pages are zero until touched, so the per-cell counters of cells
 // no ray visits cost neither the time to clear them nor memory traffic (a
 // std::vector writes every byte when it is created). Blocks of 2 MiB and
-// more are mapped for transparent huge pages (accel/huge_pages.h): a first
+// more are mapped for transparent huge pages (core/huge_pages.h): a first
 // touch of a 4 KiB page costs about 12 us on the project's VMs, which made
 // the per-cell counters of a large grid cost seconds however few the rays.
 #pragma once
 
-#include "accel/huge_pages.h"
+#include "core/huge_pages.h"
 
 #include <cstdlib>
 #include <cstring>

@@ -11,7 +11,7 @@ tools/build.sh >/dev/null
 grep -qs '"format": 3' build/kappa_calibration.json || build/kappa calibrate >/dev/null
 # 256 spp take about a minute on 2 cores (grid accelerator, statistics on):
 # with the defaults (sobol, roulette from bounce 5) their relMSE, about 0.0003,
-# is about half what 400 spp of independent sampling gave (README, converge).
+# is about half what 400 spp of independent sampling gave (docs/command-line.md, converge).
 # The image goes to the default path, out/cornell-box.exr (out/ is created),
 # the per-frame cost report to out/cornell-box.json.
 build/kappa render assets/cornell-box/scene.json --spp 256 --report out/cornell-box.json "$@"

@@ -63,7 +63,7 @@ case "$mode" in
     # why), then the others (scripts, fuzz replays, flag checks) through ctest.
     tools/run_gtest_shards.sh 2 '-GridFlags.CalibrateBuildsWithinGridMaxBytesWhenItFits' \
       build-asan/tests/cli_tests build-asan/tests/renderer_tests build-asan/tests/stats_tests \
-      build-asan/tests/accel_tests
+      build-asan/tests/accel_tests build-asan/tests/core_tests
     (cd build-asan && ctest --output-on-failure -j 2 -LE study -R '^(Tools|Fuzz|Build)[.]' "$@")
     ;;
   tsan)

@@ -11,7 +11,7 @@
 
 #include "accel/factory.h"
 #include "accel/grid_resolution.h"
-#include "accel/input_error.h"
+#include "core/input_error.h"
 
 namespace kappa {
 namespace {

@@ -7,8 +7,8 @@
 #include <new>
 #include <stdexcept>
 
+#include "core/error.h"
 #include "renderer/cli/accel_flags.h"
-#include "renderer/util/error.h"
 #include "renderer/version.h"
 
 namespace kappa {

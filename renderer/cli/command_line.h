@@ -1,5 +1,5 @@
 // The `kappa` command line: which subcommand, with which options. Exit codes
-// (README): 0 success, 2 bad input or options (one line on stderr), 1
+// (docs/command-line.md): 0 success, 2 bad input or options (one line on stderr), 1
 // internal error.
 #pragma once
 
@@ -25,7 +25,7 @@ std::optional<int> parse_command_line(int argc, char** argv, Command& command);
 RenderOptions vary_render_option(const RenderOptions& base, const std::string& key, const std::string& value);
 
 /// Runs a command and turns what it throws into the exit code and the one
-/// line on stderr the README promises.
+/// line on stderr docs/command-line.md promises.
 int exit_code_of(const std::function<int()>& run);
 
 }  // namespace kappa

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string_view>
 
-#include "accel/input_error.h"
+#include "core/input_error.h"
 
 namespace kappa {
 

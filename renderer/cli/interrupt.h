@@ -1,4 +1,4 @@
-// Ctrl-C during a budgeted render (README, exit codes): the first SIGINT
+// Ctrl-C during a budgeted render (docs/command-line.md, exit codes): the first SIGINT
 // sets a flag that makes the render abandon its pass, so that the image of
 // the completed passes is written and kappa exits 130; a second SIGINT, or
 // one outside a budgeted render, keeps the default policy of atomic_file.h

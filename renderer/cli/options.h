@@ -1,5 +1,5 @@
 // What each `kappa` subcommand can be told: plain structs holding the
-// defaults the README documents, filled by the command line (command_line.cpp)
+// defaults docs/command-line.md documents, filled by the command line (command_line.cpp)
 // and read by the commands (commands/).
 #pragma once
 
@@ -17,7 +17,7 @@ struct RenderOptions {
   AccelOptions build;           ///< --grid-res, --grid-density, --grid-max-bytes
   int spp = 64;                 ///< samples per pixel (with a budget: the cap, when given)
   bool spp_given = false;       ///< --spp was on the command line
-  std::string sampler = "sobol";  ///< --sampler: independent | stratified | sobol (the most efficient: README)
+  std::string sampler = "sobol";  ///< --sampler: independent | stratified | sobol (the most efficient: docs/command-line.md)
   std::string light_sampling = "mis";  ///< --light-sampling: mis | nee | bsdf
   std::string specialise = "on";  ///< --specialise: on | off (the general integrator, for measuring)
   std::string time_budget;      ///< --time-budget: "500ms", "30s", "2m", "1h"
@@ -28,7 +28,7 @@ struct RenderOptions {
   int adaptive_min_spp = 16;    ///< --adaptive-min-spp
   bool adaptive_min_spp_given = false;
   int max_depth = 32;           ///< bounces after the camera ray
-  int rr_depth = 5;             ///< Russian roulette from this bounce on (the most efficient: README)
+  int rr_depth = 5;             ///< Russian roulette from this bounce on (the most efficient: docs/command-line.md)
   bool no_rr = false;           ///< disable Russian roulette
   std::uint64_t seed = 0;
   int threads = 0;              ///< 0 = all cores

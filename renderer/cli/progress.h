@@ -10,7 +10,7 @@
 #include <mutex>
 #include <thread>
 
-#include "accel/task_progress.h"
+#include "core/task_progress.h"
 
 namespace kappa {
 

@@ -2,8 +2,8 @@
 
 #include <charconv>
 
+#include "core/error.h"
 #include "renderer/render/sampler_kind.h"
-#include "renderer/util/error.h"
 
 namespace kappa {
 

@@ -4,7 +4,7 @@
 #include <charconv>
 #include <cmath>
 
-#include "renderer/util/error.h"
+#include "core/error.h"
 
 namespace kappa {
 namespace {

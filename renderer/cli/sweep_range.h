@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "accel/grid_resolution.h"
-#include "accel/vec3.h"
+#include "core/vec3.h"
 
 namespace kappa {
 

@@ -10,16 +10,16 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "accel/factory.h"
 #include "accel/dispatch.h"
+#include "accel/factory.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "renderer/cli/progress.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/output_guard.h"
-#include "renderer/render/ray_timing.h"
 #include "renderer/render/ray_sets.h"
+#include "renderer/render/ray_timing.h"
 #include "renderer/scene/scene_loader.h"
-#include "renderer/util/error.h"
-#include "accel/parallel.h"
 
 namespace kappa {
 namespace {

@@ -8,10 +8,12 @@
 #include <optional>
 #include <type_traits>
 
-#include "accel/factory.h"
 #include "accel/cell_layout.h"
 #include "accel/dispatch.h"
-#include "accel/thread_limit.h"
+#include "accel/factory.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/thread_limit.h"
 #include "renderer/cli/progress.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/output_guard.h"
@@ -19,12 +21,10 @@
 #include "renderer/report/report_sections.h"
 #include "renderer/report/stats_table.h"
 #include "renderer/scene/scene_loader.h"
-#include "renderer/util/error.h"
 #include "stats/cast.h"
 #include "stats/cost_model.h"
 #include "stats/report.h"
 #include "stats/synthetic_rays.h"
-#include "accel/parallel.h"
 
 namespace kappa {
 

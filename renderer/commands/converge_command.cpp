@@ -12,8 +12,9 @@
 #include <sstream>
 
 #include "accel/factory.h"
-#include "accel/hash.h"
-#include "accel/thread_limit.h"
+#include "core/error.h"
+#include "core/hash.h"
+#include "core/thread_limit.h"
 #include "renderer/cli/accel_flags.h"
 #include "renderer/cli/command_line.h"
 #include "renderer/cli/progress.h"
@@ -29,7 +30,6 @@
 #include "renderer/render/sampler_kind.h"
 #include "renderer/report/render_record.h"
 #include "renderer/scene/scene_loader.h"
-#include "renderer/util/error.h"
 #include "renderer/version.h"
 #include "stats/calibration.h"
 

@@ -12,8 +12,8 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "core/error.h"
 #include "renderer/io/output_target.h"
-#include "renderer/util/error.h"
 
 namespace kappa {
 namespace {

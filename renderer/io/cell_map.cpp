@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/error.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/exr_output.h"
 #include "renderer/io/png_output.h"
-#include "renderer/util/error.h"
 
 namespace kappa {
 

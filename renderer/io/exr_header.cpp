@@ -4,7 +4,7 @@
 #include <fstream>
 #include <string>
 
-#include "renderer/util/error.h"
+#include "core/error.h"
 
 namespace kappa {
 namespace {

@@ -11,9 +11,9 @@
 #include <exception>
 #include <string>
 
-#include "accel/physical_memory.h"
+#include "core/error.h"
+#include "core/physical_memory.h"
 #include "renderer/io/exr_header.h"
-#include "renderer/util/error.h"
 
 namespace kappa {
 namespace {

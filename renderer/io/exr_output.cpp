@@ -17,8 +17,8 @@
 #include <fstream>
 #include <type_traits>
 
-#include "accel/check.h"
-#include "renderer/util/error.h"
+#include "core/check.h"
+#include "core/error.h"
 
 namespace kappa {
 namespace {

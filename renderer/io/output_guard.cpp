@@ -1,6 +1,6 @@
 #include "renderer/io/output_guard.h"
 
-#include "renderer/util/error.h"
+#include "core/error.h"
 
 namespace kappa {
 namespace {

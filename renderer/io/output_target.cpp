@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/util/error.h"
+#include "core/error.h"
 
 namespace kappa {
 namespace {

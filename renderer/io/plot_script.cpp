@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "renderer/util/error.h"
+#include "core/error.h"
 
 namespace kappa {
 

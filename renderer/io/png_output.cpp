@@ -5,8 +5,8 @@
 #include <cerrno>
 #include <string>
 
-#include "accel/check.h"
-#include "renderer/util/error.h"
+#include "core/check.h"
+#include "core/error.h"
 
 namespace kappa {
 

@@ -6,10 +6,10 @@
 #include <limits>
 #include <utility>
 
-#include "accel/check.h"
-#include "accel/thread_limit.h"
 #include "accel/grid2.h"
-#include "accel/input_error.h"
+#include "core/check.h"
+#include "core/input_error.h"
+#include "core/thread_limit.h"
 #include "stats/grid2_model.h"
 #include "stats/naive_model.h"
 

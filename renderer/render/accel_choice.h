@@ -22,7 +22,7 @@
 
 #include "accel/accel.h"
 #include "accel/factory.h"
-#include "accel/task_progress.h"
+#include "core/task_progress.h"
 #include "renderer/render/frame.h"
 #include "renderer/render/grid_choice.h"
 #include "renderer/scene/scene.h"

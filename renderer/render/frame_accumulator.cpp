@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "accel/byte_size.h"
-#include "accel/input_error.h"
-#include "accel/physical_memory.h"
-#include "accel/parallel.h"
+#include "core/byte_size.h"
+#include "core/input_error.h"
+#include "core/parallel.h"
+#include "core/physical_memory.h"
 
 namespace kappa {
 

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <cstdio>
 
-#include "accel/thread_limit.h"
+#include "core/thread_limit.h"
 #include "stats/counters.h"
 
 namespace kappa {

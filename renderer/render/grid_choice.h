@@ -11,7 +11,7 @@
 
 #include "accel/factory.h"
 #include "accel/grid.h"
-#include "accel/task_progress.h"
+#include "core/task_progress.h"
 #include "renderer/render/frame.h"
 #include "renderer/render/pilot.h"
 #include "renderer/scene/scene.h"

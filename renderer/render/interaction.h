@@ -3,9 +3,9 @@
 // OffsetRayOrigin): no scene-dependent epsilon.
 #pragma once
 
-#include "accel/float_util.h"
 #include "accel/ray.h"
 #include "accel/triangle.h"
+#include "core/float_util.h"
 
 namespace kappa {
 

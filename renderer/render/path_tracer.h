@@ -9,7 +9,7 @@
 #include <numbers>
 #include <optional>
 
-#include "accel/check.h"
+#include "core/check.h"
 #include "renderer/render/frame.h"
 #include "renderer/render/interaction.h"
 #include "renderer/render/lights.h"

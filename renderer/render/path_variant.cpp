@@ -1,6 +1,6 @@
 #include "renderer/render/path_variant.h"
 
-#include "renderer/util/error.h"
+#include "core/error.h"
 
 namespace kappa {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <utility>
 
-#include "accel/check.h"
+#include "core/check.h"
 
 namespace kappa {
 

@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-#include "accel/vec3.h"
+#include "core/vec3.h"
 
 namespace kappa {
 

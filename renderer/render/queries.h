@@ -13,7 +13,7 @@
 #include <optional>
 
 #include "accel/accel.h"
-#include "accel/hash.h"
+#include "core/hash.h"
 #include "renderer/render/sampling.h"
 #include "stats/cost_model.h"
 #include "stats/query_clock.h"

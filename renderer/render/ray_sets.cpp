@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include "accel/check.h"
-#include "accel/input_error.h"
+#include "core/check.h"
+#include "core/input_error.h"
 #include "renderer/render/camera.h"
 #include "renderer/render/interaction.h"
 #include "renderer/render/lights.h"

@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "accel/parallel.h"
+#include "core/parallel.h"
 #include "renderer/render/ray_sets.h"
 
 namespace kappa {

@@ -7,12 +7,12 @@
 
 #include "accel/grid2_traverse.h"
 #include "accel/grid_traverse.h"
-#include "accel/thread_limit.h"
+#include "core/thread_limit.h"
 #include "renderer/render/frames.h"
 #include "renderer/render/queries.h"
-#include "stats/query_clock.h"
 #include "renderer/render/tile_loop.h"
 #include "stats/per_cell_budget.h"
+#include "stats/query_clock.h"
 
 namespace kappa {
 

@@ -1,6 +1,6 @@
 #include "renderer/render/samplers.h"
 
-#include "accel/input_error.h"
+#include "core/input_error.h"
 
 namespace kappa {
 

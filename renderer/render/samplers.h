@@ -24,7 +24,7 @@
 #include <string>
 #include <utility>
 
-#include "accel/hash.h"
+#include "core/hash.h"
 #include "renderer/render/sampler_kind.h"
 #include "renderer/render/sampling.h"
 

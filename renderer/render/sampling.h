@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <numbers>
 
-#include "accel/hash.h"
-#include "accel/vec3.h"
+#include "core/hash.h"
+#include "core/vec3.h"
 
 namespace kappa {
 

@@ -14,11 +14,11 @@
 #include <memory>
 #include <vector>
 
+#include "core/parallel.h"
 #include "renderer/render/camera.h"
 #include "renderer/render/frame_accumulator.h"
 #include "renderer/render/path_tracer.h"
 #include "renderer/render/samplers.h"
-#include "accel/parallel.h"
 
 namespace kappa {
 

@@ -2,8 +2,8 @@
 
 #include <cstdio>
 
-#include "accel/hash.h"
-#include "accel/input_file.h"
+#include "core/hash.h"
+#include "core/input_file.h"
 
 namespace kappa {
 

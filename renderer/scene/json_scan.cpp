@@ -6,7 +6,7 @@
 #include <set>
 #include <vector>
 
-#include "renderer/util/error.h"
+#include "core/error.h"
 
 namespace kappa {
 

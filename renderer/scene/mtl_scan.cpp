@@ -5,9 +5,9 @@
 #include <sstream>
 #include <vector>
 
+#include "core/error.h"
 #include "renderer/scene/obj_limits.h"
 #include "renderer/scene/obj_scan.h"
-#include "renderer/util/error.h"
 
 namespace kappa {
 

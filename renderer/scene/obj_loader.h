@@ -1,14 +1,14 @@
 // OBJ + MTL loading through tinyobjloader, behind a line-numbered pre-scan that
 // refuses (InputError naming file:line) or repairs with a warning what
 // tinyobjloader would otherwise accept silently. The policy per case is the
-// table in README.md ("Bad input").
+// table in docs/bad-input.md ("Bad input").
 #pragma once
 
 #include <filesystem>
 
-#include "accel/task_progress.h"
+#include "core/error.h"
+#include "core/task_progress.h"
 #include "renderer/scene/scene.h"
-#include "renderer/util/error.h"
 
 namespace kappa {
 

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "accel/task_progress.h"
-#include "accel/vec3.h"
-#include "renderer/util/error.h"
+#include "core/error.h"
+#include "core/task_progress.h"
+#include "core/vec3.h"
 
 namespace kappa {
 

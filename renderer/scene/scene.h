@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "accel/triangle.h"
-#include "accel/vec3.h"
+#include "core/vec3.h"
 
 namespace kappa {
 

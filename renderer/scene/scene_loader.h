@@ -4,9 +4,9 @@
 
 #include <filesystem>
 
-#include "accel/task_progress.h"
+#include "core/error.h"
+#include "core/task_progress.h"
 #include "renderer/scene/scene.h"
-#include "renderer/util/error.h"
 
 namespace kappa {
 

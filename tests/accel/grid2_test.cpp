@@ -15,9 +15,9 @@
 #include "accel/dispatch.h"
 #include "accel/factory.h"
 #include "accel/grid2_traverse.h"
-#include "accel/input_error.h"
 #include "accel/triangle_box.h"
 #include "agreement.h"
+#include "core/input_error.h"
 #include "stats/synthetic_rays.h"
 #include "test_util.h"
 

@@ -11,10 +11,10 @@
 #include <random>
 
 #include "accel/naive.h"
-#include "agreement.h"
 #include "accel/triangle_box.h"
+#include "agreement.h"
+#include "core/input_error.h"
 #include "renderer/scene/obj_loader.h"
-#include "accel/input_error.h"
 #include "test_util.h"
 
 namespace kappa {

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "accel/factory.h"
-#include "accel/input_error.h"
+#include "core/input_error.h"
 #include "test_util.h"
 
 namespace kappa {

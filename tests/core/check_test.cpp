@@ -1,6 +1,6 @@
 // KAPPA_CHECK: a broken invariant prints the condition and both operands,
 // then aborts; a kept one costs nothing but its test.
-#include "accel/check.h"
+#include "core/check.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // libFuzzer target: naive against every other exact accelerator (today the
 // grid, at a fuzzed resolution) on fuzzed triangles and rays. For rays in the
-// domain the README guarantees (finite, non-zero direction, origin within a
+// domain docs/accelerators.md guarantees (finite, non-zero direction, origin within a
 // few bounding-box diagonals of the scene, 0 <= tmin < tmax) the closest hit
 // must be bitwise the same (triangle, t, barycentrics) and any_hit must agree
 // with it. Outside that domain: no crash, no hang, and no hit outside
@@ -17,10 +17,10 @@
 #include <limits>
 #include <vector>
 
-#include "accel/check.h"
 #include "accel/factory.h"
-#include "accel/input_error.h"
 #include "accel/naive.h"
+#include "core/check.h"
+#include "core/input_error.h"
 #include "renderer/scene/obj_limits.h"
 
 namespace {

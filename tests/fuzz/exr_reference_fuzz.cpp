@@ -5,10 +5,10 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "accel/check.h"
+#include "core/check.h"
+#include "core/error.h"
 #include "fuzz_support.h"
 #include "renderer/io/exr_input.h"
-#include "renderer/util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace kappa;

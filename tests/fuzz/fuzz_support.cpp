@@ -6,10 +6,10 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "accel/check.h"
+#include "core/check.h"
+#include "core/error.h"
 #include "renderer/scene/obj_limits.h"
 #include "renderer/scene/scene_loader.h"
-#include "renderer/util/error.h"
 
 namespace kappa::fuzz {
 namespace {

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "accel/check.h"
 #include "accel/grid_resolution.h"
+#include "core/check.h"
+#include "core/error.h"
 #include "renderer/cli/accel_flags.h"
-#include "renderer/util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace kappa;

@@ -1,8 +1,8 @@
-// The layout README.md's "How it is built" describes, read off the sources:
+// The layout docs/how-it-is-built.md's "How it is built" describes, read off the sources:
 // renderer/ holds rooms with only main.cpp and a few shared headers at its
 // top, no component includes itself through others, no two rooms depend on
 // each other, no command includes another, and the libraries below the
-// renderer (accel, stats) never include it.
+// renderer never include a higher floor (core <- accel <- stats <- renderer).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -113,7 +113,7 @@ TEST(Layout, RendererTopHoldsOnlyMainAndSharedHeaders) {
 }
 
 TEST(Layout, NoComponentIncludesItselfThroughOthers) {
-  const Graph g = include_graph({"accel", "stats", "renderer"});
+  const Graph g = include_graph({"core", "accel", "stats", "renderer"});
   EXPECT_GT(g.size(), 40u);  // the walk found the sources
   EXPECT_EQ(find_cycle(g), "");
 }
@@ -137,26 +137,41 @@ TEST(Layout, NoCommandIncludesAnother) {
   }
 }
 
-TEST(Layout, LibrariesBelowTheRendererNeverIncludeIt) {
-  for (const auto& [from, targets] : include_graph({"accel", "stats"}))
-    for (const auto& to : targets) EXPECT_NE(library_of(to), "renderer") << from << " includes " << to;
-  for (const auto& [from, targets] : include_graph({"accel"}))
-    for (const auto& to : targets) EXPECT_EQ(library_of(to), "accel") << from << " includes " << to;
+/// The floors, lowest first (cmake/floors.cmake): a floor includes its own
+/// and lower ones only. The build refuses an upward include too
+/// (Build.Floors.*); this also catches one written as a relative path.
+int floor_of(const std::string& library) {
+  static const std::map<std::string, int> floors = {{"core", 0}, {"accel", 1}, {"stats", 2}, {"renderer", 3}};
+  const auto it = floors.find(library);
+  return it == floors.end() ? 99 : it->second;
 }
 
-/// The README's "How it is built" section.
+TEST(Layout, NoFloorIncludesAHigherOne) {
+  int edges = 0;
+  for (const auto& [from, targets] : include_graph({"core", "accel", "stats", "renderer"}))
+    for (const auto& to : targets) {
+      EXPECT_LE(floor_of(library_of(to)), floor_of(library_of(from))) << from << " includes " << to;
+      ++edges;
+    }
+  EXPECT_GT(edges, 100);
+  // core/ is the ground floor: it includes only itself.
+  for (const auto& [from, targets] : include_graph({"core"}))
+    for (const auto& to : targets) EXPECT_EQ(library_of(to), "core") << from << " includes " << to;
+}
+
+/// docs/how-it-is-built.md's "How it is built" section.
 std::string how_it_is_built() {
-  std::ifstream in(test::source_dir() / "README.md");
+  std::ifstream in(test::source_dir() / "docs" / "how-it-is-built.md");
   const std::string readme((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const auto begin = readme.find("## How it is built");
   if (begin == std::string::npos) return {};
   return readme.substr(begin, readme.find("\n## ", begin + 1) - begin);
 }
 
-/// Every source file name under the folders the README describes.
+/// Every source file name under the folders docs/how-it-is-built.md describes.
 std::set<std::string> source_file_names() {
   std::set<std::string> names;
-  for (const char* top : {"accel", "stats", "renderer", "tests", "tools"})
+  for (const char* top : {"core", "accel", "stats", "renderer", "tests", "tools"})
     for (const auto& entry : fs::recursive_directory_iterator(test::source_dir() / top))
       if (entry.is_regular_file()) names.insert(entry.path().filename().string());
   return names;
@@ -164,7 +179,7 @@ std::set<std::string> source_file_names() {
 
 TEST(Layout, HowItIsBuiltNamesOnlyFilesAndFoldersThatExist) {
   const std::string section = how_it_is_built();
-  ASSERT_FALSE(section.empty()) << "README.md has no \"How it is built\" section";
+  ASSERT_FALSE(section.empty()) << "docs/how-it-is-built.md has no \"How it is built\" section";
   const std::set<std::string> names = source_file_names();
   static const std::regex code("`([^`]+)`");
   static const std::regex source_name(R"(^[\w*]+\.(h|cpp|sh)$)");
@@ -194,7 +209,7 @@ TEST(Layout, HowItIsBuiltHasARowForEveryRoom) {
     const std::string row = "| `renderer/" + entry.path().filename().string() + "/` |";
     EXPECT_NE(section.find(row), std::string::npos) << row;
   }
-  for (const char* top : {"accel", "stats", "tests", "tools", "assets"})
+  for (const char* top : {"core", "accel", "stats", "tests", "tools", "assets"})
     EXPECT_NE(section.find(std::string("| `") + top + "/` |"), std::string::npos) << top;
 }
 

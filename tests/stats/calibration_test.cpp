@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "accel/input_error.h"
+#include "core/input_error.h"
 #include "test_util.h"
 
 namespace kappa {

@@ -12,7 +12,7 @@
 
 #include "accel/grid.h"
 #include "accel/grid_traverse.h"
-#include "accel/thread_limit.h"
+#include "core/thread_limit.h"
 #include "renderer/scene/obj_loader.h"
 #include "stats/cast.h"
 #include "stats/cost_model.h"

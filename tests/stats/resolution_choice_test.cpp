@@ -10,9 +10,9 @@
 #include <limits>
 #include <random>
 
-#include "accel/input_error.h"
 #include "accel/grid_traverse.h"
 #include "accel/naive.h"
+#include "core/input_error.h"
 #include "stats/cast.h"
 #include "test_util.h"
 

@@ -1,5 +1,5 @@
 // Budgeted renders from the command line: what the report and the EXR say
-// of the passes, and the Ctrl-C policy (README, exit codes): the first
+// of the passes, and the Ctrl-C policy (docs/command-line.md, exit codes): the first
 // SIGINT abandons the pass in progress and writes the completed passes
 // (exit 130); before a pass is complete, or at a second SIGINT, nothing is
 // written.

@@ -1,5 +1,5 @@
-// The command line's contract for bad options (README, "Exit codes" and
-// "## Bad input"): exit code 2, exactly one line on stderr, and no output
+// The command line's contract for bad options (docs/command-line.md, "Exit codes",
+// and docs/bad-input.md, "## Bad input"): exit code 2, exactly one line on stderr, and no output
 // file created or touched. Plus the few things that must work: --help, a
 // tiny render, and the default output path.
 #include <gtest/gtest.h>

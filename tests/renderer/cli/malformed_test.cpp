@@ -1,8 +1,8 @@
-// The bad-input policy is documented once, in the README's "## Bad input"
+// The bad-input policy is documented once, in docs/bad-input.md's "## Bad input"
 // table, and this file checks the binary against it: every input file in
 // assets/malformed/ has a row, and every row's outcome (refuse / warn / load)
 // is what `kappa render` actually does with that file. A behaviour change
-// therefore needs a README change, and vice versa.
+// therefore needs a docs/bad-input.md change, and vice versa.
 #include <gtest/gtest.h>
 
 #include "image_files.h"
@@ -82,10 +82,10 @@ void parse_outcome(PolicyRow& row) {
   }
 }
 
-/// The rows of the first table under "## Bad input" in README.md. Empty if
+/// The rows of the first table under "## Bad input" in docs/bad-input.md. Empty if
 /// the section or its table is missing: the coverage test then fails.
 std::vector<PolicyRow> read_policy_table() {
-  std::ifstream in(source_dir() / "README.md");
+  std::ifstream in(source_dir() / "docs" / "bad-input.md");
   std::vector<PolicyRow> rows;
   bool in_section = false, in_table = false;
   for (std::string line; std::getline(in, line);) {
@@ -148,7 +148,7 @@ std::set<std::string> malformed_inputs() {
 TEST(MalformedPolicyTable, HasOneRowPerInputFile) {
   const std::set<std::string> inputs = malformed_inputs();
   ASSERT_FALSE(inputs.empty()) << malformed_dir();
-  ASSERT_FALSE(policy_rows().empty()) << "no table under '## Bad input' in README.md";
+  ASSERT_FALSE(policy_rows().empty()) << "no table under '## Bad input' in docs/bad-input.md";
   std::map<std::string, int> count;
   for (const PolicyRow& row : policy_rows()) ++count[row.file];
   for (const auto& [file, n] : count) {

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/error.h"
 #include "renderer/cli/sweep_range.h"
-#include "renderer/util/error.h"
 #include "test_util.h"
 
 namespace kappa {

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "renderer/io/exr_output.h"
-#include "renderer/util/error.h"
 #include "test_util.h"
 
 namespace kappa {

@@ -1,4 +1,4 @@
-// Hostile input, as the README's policy table classes it: an output never
+// Hostile input, as docs/bad-input.md's policy table classes it: an output never
 // replaces an input or another output; a device, FIFO or descriptor gets a
 // text output written to it directly, never replaced, and never an image; a
 // link is written through or refused, never replaced; reading never hangs on

@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <string>
 
+#include "core/error.h"
 #include "renderer/io/atomic_file.h"
-#include "renderer/util/error.h"
 #include "test_util.h"
 
 namespace kappa::test {

@@ -3,8 +3,8 @@
 
 #include <cstring>
 
-#include "accel/thread_limit.h"
 #include "accel/factory.h"
+#include "core/thread_limit.h"
 #include "renderer/render/camera.h"
 #include "renderer/render/render_helpers.h"
 #include "renderer/scene/scene_loader.h"

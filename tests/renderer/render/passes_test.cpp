@@ -9,7 +9,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "accel/thread_limit.h"
+#include "core/thread_limit.h"
 #include "renderer/render/pass_planner.h"
 #include "renderer/render/pixel_samples.h"
 #include "renderer/render/render_helpers.h"

@@ -7,9 +7,9 @@
 #include <cstring>
 #include <set>
 
-#include "accel/thread_limit.h"
+#include "core/input_error.h"
+#include "core/thread_limit.h"
 #include "renderer/render/render_helpers.h"
-#include "accel/input_error.h"
 #include "renderer/render/samplers.h"
 #include "renderer/scene/scene_loader.h"
 #include "test_util.h"

@@ -6,7 +6,7 @@
 
 #include "accel/factory.h"
 #include "accel/grid.h"
-#include "accel/thread_limit.h"
+#include "core/thread_limit.h"
 #include "renderer/render/render_helpers.h"
 #include "renderer/report/render_report.h"
 #include "renderer/scene/scene_loader.h"

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "renderer/util/error.h"
+#include "core/error.h"
 #include "test_util.h"
 
 namespace kappa {
