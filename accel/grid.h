@@ -155,10 +155,12 @@ class UniformGrid final : public Accelerator, public CellLayout {
 
   /// The same queries, reporting what the walk does to `recorder` (the
   /// protocol of recorder.h; the walk is in grid_traverse.h).
-  template <class Recorder>
-  std::optional<Hit> closest_hit(const Ray& ray, Recorder& recorder) const;
-  template <class Recorder>
-  bool any_hit(const Ray& ray, Recorder& recorder) const;
+  /// With a filter (hit_filter.h), asked of every candidate hit the walk's
+  /// tests find, in the walk's order.
+  template <class Recorder, HitFilter Filter = NoHitFilter>
+  std::optional<Hit> closest_hit(const Ray& ray, Recorder& recorder, const Filter& filter = {}) const;
+  template <class Recorder, HitFilter Filter = NoHitFilter>
+  bool any_hit(const Ray& ray, Recorder& recorder, const Filter& filter = {}) const;
   /// Walks every cell of the ray's [tmin, tmax] inside the grid, testing
   /// every triangle met (no stop at a hit); returns the closest hit.
   template <class Recorder>
@@ -185,8 +187,8 @@ class UniformGrid final : public Accelerator, public CellLayout {
   }
 
  private:
-  template <GridWalk Mode, class Recorder, bool TestTriangles = true>
-  bool traverse(const Ray& ray, Hit& best, Recorder& recorder) const;
+  template <GridWalk Mode, class Recorder, bool TestTriangles = true, HitFilter Filter = NoHitFilter>
+  bool traverse(const Ray& ray, Hit& best, Recorder& recorder, const Filter& filter = {}) const;
 
   std::span<const Triangle> m_triangles;
   GridInfo m_info;

@@ -126,10 +126,12 @@ class NestedGrid final : public Accelerator, public CellLayout {
   std::vector<Level> levels() const override;
 
   /// The queries with a recorder (accel/recorder.h; the walk is in grid2_traverse.h).
-  template <class Recorder>
-  std::optional<Hit> closest_hit(const Ray& ray, Recorder& recorder) const;
-  template <class Recorder>
-  bool any_hit(const Ray& ray, Recorder& recorder) const;
+  /// With a filter (hit_filter.h), asked of every candidate hit the walk's
+  /// tests find, in the walk's order.
+  template <class Recorder, HitFilter Filter = NoHitFilter>
+  std::optional<Hit> closest_hit(const Ray& ray, Recorder& recorder, const Filter& filter = {}) const;
+  template <class Recorder, HitFilter Filter = NoHitFilter>
+  bool any_hit(const Ray& ray, Recorder& recorder, const Filter& filter = {}) const;
   template <class Recorder>
   std::optional<Hit> walk_whole(const Ray& ray, Recorder& recorder) const;
 
@@ -160,8 +162,8 @@ class NestedGrid final : public Accelerator, public CellLayout {
   static constexpr std::uint32_t kNoLeaf = 0xFFFFFFFF;
 
  private:
-  template <GridWalk Mode, class Recorder>
-  bool traverse(const Ray& ray, Hit& best, Recorder& recorder) const;
+  template <GridWalk Mode, class Recorder, HitFilter Filter = NoHitFilter>
+  bool traverse(const Ray& ray, Hit& best, Recorder& recorder, const Filter& filter = {}) const;
   /// The walk through refined cell `node` (of box `lo`, `size`) from
   /// t_enter on, its leaves at `Level`; true when the whole walk stops.
   template <GridWalk Mode, class Recorder, int Level, class Walk>

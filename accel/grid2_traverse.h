@@ -19,22 +19,23 @@ namespace kappa {
 namespace detail {
 
 /// One ray's walk through grid2: what every level's DDA shares.
-template <GridWalk Mode, class Recorder>
+template <GridWalk Mode, class Recorder, HitFilter Filter>
 struct Grid2Walk {
   static constexpr bool AnyHit = Mode == GridWalk::any;
   static constexpr bool Closest = Mode == GridWalk::closest;
   /// Without a recorder nothing reads the counts, and the walk keeps none.
   static constexpr bool Records = !std::is_same_v<Recorder, NoRecorder>;
 
-  Grid2Walk(const Ray& r, Hit& b, Recorder& rec, const Triangle* tris, const std::uint32_t* offs,
+  Grid2Walk(const Ray& r, Hit& b, Recorder& rec, const Filter& f, const Triangle* tris, const std::uint32_t* offs,
             const std::uint32_t* leaves, const TriangleId* ids)
-      : ray(r), prepared(r), best(b), recorder(rec), triangles(tris), offsets(offs), leaf_of_node(leaves), refs(ids),
-        o(r.o), d(r.d) {}
+      : ray(r), prepared(r), best(b), recorder(rec), filter(f), triangles(tris), offsets(offs), leaf_of_node(leaves),
+        refs(ids), o(r.o), d(r.d) {}
 
   const Ray& ray;
   const PreparedRay prepared;
   Hit& best;
   Recorder& recorder;
+  const Filter& filter;
   const Triangle* triangles;
   const std::uint32_t* offsets;
   const std::uint32_t* leaf_of_node;
@@ -83,8 +84,7 @@ struct Grid2Walk {
       ++counts.tests;
       ++counts.level_tests[level];
       if constexpr (AnyHit) {
-        float t, b0, b1, b2;
-        if (intersect_triangle(prepared, triangles[id], ray.tmin, ray.tmax, t, b0, b1, b2)) {
+        if (test_any(prepared, triangles[id], id, ray.tmin, ray.tmax, filter)) {
           recorder.hit();
           occluded = true;
           return true;
@@ -92,7 +92,7 @@ struct Grid2Walk {
       } else {
         const TriangleId before = best.triangle;
         const float before_t = best.t;
-        test_closest(prepared, triangles[id], id, ray.tmin, best);
+        test_closest(prepared, triangles[id], id, ray.tmin, best, filter);
         if (best.triangle != before || best.t != before_t) recorder.hit();
       }
     }
@@ -123,11 +123,10 @@ struct Grid2Walk {
 
   [[gnu::always_inline]] bool test_one(const Triangle& triangle, TriangleId id) {
     if constexpr (AnyHit) {
-      float t, b0, b1, b2;
-      occluded = intersect_triangle(prepared, triangle, ray.tmin, ray.tmax, t, b0, b1, b2);
+      occluded = test_any(prepared, triangle, id, ray.tmin, ray.tmax, filter);
       return occluded;
     } else {
-      test_closest(prepared, triangle, id, ray.tmin, best);
+      test_closest(prepared, triangle, id, ray.tmin, best, filter);
       return false;
     }
   }
@@ -143,11 +142,17 @@ struct Grid2Walk {
         if (test_one(*batch[i], ids[i])) return true;
         continue;
       }
+      // The filter sees the lane's hit where the scalar test would have
+      // shown it (test_any's and test_closest's order).
       if constexpr (AnyHit) {
-        if (accept4(lanes, i, ray.tmin, ray.tmax)) return occluded = true;
+        if (accept4(lanes, i, ray.tmin, ray.tmax) &&
+            filter_accepts(filter, Hit{ids[i], lanes.t[i], lanes.b[0][i], lanes.b[1][i], lanes.b[2][i]}))
+          return occluded = true;
       } else {
-        if (accept4(lanes, i, ray.tmin, closest_limit(best)) && closer_than(lanes.t[i], ids[i], best))
-          best = Hit{ids[i], lanes.t[i], lanes.b[0][i], lanes.b[1][i], lanes.b[2][i]};
+        if (accept4(lanes, i, ray.tmin, closest_limit(best)) && closer_than(lanes.t[i], ids[i], best)) {
+          const Hit candidate{ids[i], lanes.t[i], lanes.b[0][i], lanes.b[1][i], lanes.b[2][i]};
+          if (filter_accepts(filter, candidate)) best = candidate;
+        }
       }
     }
     return false;
@@ -223,14 +228,14 @@ bool NestedGrid::walk_sub_grid(const Node& node, const double lo[3], const doubl
   }
 }
 
-template <GridWalk Mode, class Recorder>
-bool NestedGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const {
+template <GridWalk Mode, class Recorder, HitFilter Filter>
+bool NestedGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder, const Filter& filter) const {
   constexpr bool Closest = Mode == GridWalk::closest;
   if (m_refs.empty() || !is_finite(ray.o) || !is_finite(ray.d) || ray.d == Vec3f{0, 0, 0}) return false;
   if (!(ray.tmin <= ray.tmax)) return false;
   const GridInfo& g = m_info.top;
-  detail::Grid2Walk<Mode, Recorder> w(ray, best, recorder, m_triangles.data(), m_offsets.data(), m_leaf_of_node.data(),
-                                      m_refs.data());
+  detail::Grid2Walk<Mode, Recorder, Filter> w(ray, best, recorder, filter, m_triangles.data(), m_offsets.data(),
+                                              m_leaf_of_node.data(), m_refs.data());
   const Vec3d& o = w.o;
   const Vec3d& d = w.d;
 
@@ -334,18 +339,18 @@ bool NestedGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const {
   return done(best.valid());
 }
 
-template <class Recorder>
-std::optional<Hit> NestedGrid::closest_hit(const Ray& ray, Recorder& recorder) const {
+template <class Recorder, HitFilter Filter>
+std::optional<Hit> NestedGrid::closest_hit(const Ray& ray, Recorder& recorder, const Filter& filter) const {
   Hit best;
   best.t = ray.tmax;
-  if (!traverse<GridWalk::closest>(ray, best, recorder)) return std::nullopt;
+  if (!traverse<GridWalk::closest, Recorder, Filter>(ray, best, recorder, filter)) return std::nullopt;
   return best;
 }
 
-template <class Recorder>
-bool NestedGrid::any_hit(const Ray& ray, Recorder& recorder) const {
+template <class Recorder, HitFilter Filter>
+bool NestedGrid::any_hit(const Ray& ray, Recorder& recorder, const Filter& filter) const {
   Hit unused;
-  return traverse<GridWalk::any>(ray, unused, recorder);
+  return traverse<GridWalk::any, Recorder, Filter>(ray, unused, recorder, filter);
 }
 
 template <class Recorder>

@@ -43,8 +43,8 @@ class Mailbox {
 
 }  // namespace detail
 
-template <GridWalk Mode, class Recorder, bool TestTriangles>
-bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const {
+template <GridWalk Mode, class Recorder, bool TestTriangles, HitFilter Filter>
+bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder, const Filter& filter) const {
   constexpr bool AnyHit = Mode == GridWalk::any;
   constexpr bool Whole = Mode == GridWalk::whole;
   if constexpr (TestTriangles) KAPPA_DCHECK(!m_info.partial);  // a partial grid counts; its hits would be wrong
@@ -165,15 +165,14 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
         if constexpr (!TestTriangles) {
           continue;  // counting only: `best` already holds the hit the walk would find
         } else if constexpr (AnyHit) {
-          float t, b0, b1, b2;
-          if (intersect_triangle(prepared, m_triangles[id], ray.tmin, ray.tmax, t, b0, b1, b2)) {
+          if (test_any(prepared, m_triangles[id], id, ray.tmin, ray.tmax, filter)) {
             recorder.hit();
             return done(true);
           }
         } else {
           const TriangleId before = best.triangle;
           const float before_t = best.t;
-          test_closest(prepared, m_triangles[id], id, ray.tmin, best);
+          test_closest(prepared, m_triangles[id], id, ray.tmin, best, filter);
           if (best.triangle != before || best.t != before_t) recorder.hit();
         }
       }
@@ -206,18 +205,18 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder) const 
   return done(best.valid());
 }
 
-template <class Recorder>
-std::optional<Hit> UniformGrid::closest_hit(const Ray& ray, Recorder& recorder) const {
+template <class Recorder, HitFilter Filter>
+std::optional<Hit> UniformGrid::closest_hit(const Ray& ray, Recorder& recorder, const Filter& filter) const {
   Hit best;
   best.t = ray.tmax;
-  if (!traverse<GridWalk::closest>(ray, best, recorder)) return std::nullopt;
+  if (!traverse<GridWalk::closest, Recorder, true, Filter>(ray, best, recorder, filter)) return std::nullopt;
   return best;
 }
 
-template <class Recorder>
-bool UniformGrid::any_hit(const Ray& ray, Recorder& recorder) const {
+template <class Recorder, HitFilter Filter>
+bool UniformGrid::any_hit(const Ray& ray, Recorder& recorder, const Filter& filter) const {
   Hit unused;
-  return traverse<GridWalk::any>(ray, unused, recorder);
+  return traverse<GridWalk::any, Recorder, true, Filter>(ray, unused, recorder, filter);
 }
 
 template <class Recorder>

@@ -12,22 +12,8 @@ NaiveAccelerator::NaiveAccelerator(std::span<const Triangle> triangles) : m_tria
   m_build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::optional<Hit> NaiveAccelerator::closest_hit(const Ray& ray) const {
-  const PreparedRay prepared(ray);
-  Hit best;
-  best.t = ray.tmax;
-  for (const TriangleId i : m_usable) test_closest(prepared, m_triangles[i], i, ray.tmin, best);
-  if (!best.valid()) return std::nullopt;
-  return best;
-}
+std::optional<Hit> NaiveAccelerator::closest_hit(const Ray& ray) const { return closest_hit(ray, NoHitFilter{}); }
 
-bool NaiveAccelerator::any_hit(const Ray& ray) const {
-  const PreparedRay prepared(ray);
-  float t, b0, b1, b2;
-  for (const TriangleId i : m_usable) {
-    if (intersect_triangle(prepared, m_triangles[i], ray.tmin, ray.tmax, t, b0, b1, b2)) return true;
-  }
-  return false;
-}
+bool NaiveAccelerator::any_hit(const Ray& ray) const { return any_hit(ray, NoHitFilter{}); }
 
 }  // namespace kappa

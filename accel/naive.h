@@ -21,6 +21,25 @@ class NaiveAccelerator final : public Accelerator {
   std::uint64_t bytes() const override { return m_usable.size() * sizeof(TriangleId); }
   double build_s() const override { return m_build_s; }
 
+  /// The same queries with an any-hit filter (hit_filter.h) asked of every
+  /// candidate, in id order.
+  template <HitFilter Filter>
+  std::optional<Hit> closest_hit(const Ray& ray, const Filter& filter) const {
+    const PreparedRay prepared(ray);
+    Hit best;
+    best.t = ray.tmax;
+    for (const TriangleId i : m_usable) test_closest(prepared, m_triangles[i], i, ray.tmin, best, filter);
+    if (!best.valid()) return std::nullopt;
+    return best;
+  }
+  template <HitFilter Filter>
+  bool any_hit(const Ray& ray, const Filter& filter) const {
+    const PreparedRay prepared(ray);
+    for (const TriangleId i : m_usable)
+      if (test_any(prepared, m_triangles[i], i, ray.tmin, ray.tmax, filter)) return true;
+    return false;
+  }
+
  private:
   std::span<const Triangle> m_triangles;
   /// Ids of the triangles with non-zero area and finite vertices, ascending:

@@ -13,6 +13,7 @@
 
 #include "core/float_util.h"
 #include "core/vec3.h"
+#include "hit_filter.h"
 #include "ray.h"
 
 namespace kappa {
@@ -128,12 +129,25 @@ struct PreparedRay {
 }
 
 /// Closest-hit update shared by the exact accelerators: tests one triangle and
-/// keeps it if it is closer under closer_than's tie rule.
-[[gnu::always_inline]] inline void test_closest(const PreparedRay& r, const Triangle& tri, TriangleId id, float tmin, Hit& best) {
+/// keeps it if it is closer under closer_than's tie rule and `filter`
+/// (hit_filter.h) lets it count.
+template <HitFilter Filter = NoHitFilter>
+[[gnu::always_inline]] inline void test_closest(const PreparedRay& r, const Triangle& tri, TriangleId id, float tmin,
+                                                Hit& best, const Filter& filter = {}) {
   float t, b0, b1, b2;
   if (intersect_triangle(r, tri, tmin, closest_limit(best), t, b0, b1, b2) && closer_than(t, id, best)) {
-    best = Hit{id, t, b0, b1, b2};
+    const Hit candidate{id, t, b0, b1, b2};
+    if (filter_accepts(filter, candidate)) best = candidate;
   }
+}
+
+/// Any-hit test shared by the exact accelerators: true if the triangle is hit
+/// within [tmin, tmax] and `filter` lets the hit count.
+template <HitFilter Filter = NoHitFilter>
+[[gnu::always_inline]] inline bool test_any(const PreparedRay& r, const Triangle& tri, TriangleId id, float tmin,
+                                            float tmax, const Filter& filter = {}) {
+  float t, b0, b1, b2;
+  return intersect_triangle(r, tri, tmin, tmax, t, b0, b1, b2) && filter_accepts(filter, Hit{id, t, b0, b1, b2});
 }
 
 /// Twice the area of a triangle, computed in double (zero for degenerate ones).
