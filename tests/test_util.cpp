@@ -1,6 +1,6 @@
 #include "test_util.h"
 
-#include "renderer/scene/obj_loader.h"
+#include "renderer/scene/obj/obj_loader.h"
 
 #include <sys/wait.h>
 #include <unistd.h>

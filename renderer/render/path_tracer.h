@@ -15,6 +15,7 @@
 #include "renderer/render/lights.h"
 #include "renderer/render/path_variant.h"
 #include "renderer/render/samplers.h"
+#include "renderer/render/shading_point.h"
 #include "renderer/render/sampling.h"
 #include "renderer/scene/scene.h"
 
@@ -67,9 +68,12 @@ class PathTracer {
         }
         break;
       }
-      const Triangle& tri = m_scene.triangles[hit->triangle];
-      const Material& mat = m_scene.materials[m_scene.material_of[hit->triangle]];
-      const SurfacePoint sp = surface_point(tri, hit->b0, hit->b1, hit->b2);
+      // Shading reads the shading point, never the accelerator's hit. The
+      // Lambertian BSDF uses the geometric normal: the shading normal and
+      // UVs are there for the materials that read them.
+      const ShadingPoint shading = shading_point(m_scene, *hit);
+      const Material& mat = *shading.material;
+      const SurfacePoint& sp = shading.geometry;
       const Vec3f wo = -ray.d;
       const float cos_o = dot(sp.n, wo);
       const Vec3f n = cos_o >= 0.0f ? sp.n : -sp.n;  // reflect on the side the ray came from

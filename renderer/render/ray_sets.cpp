@@ -8,6 +8,7 @@
 #include "renderer/render/interaction.h"
 #include "renderer/render/lights.h"
 #include "renderer/render/sampling.h"
+#include "renderer/render/shading_point.h"
 #include "stats/synthetic_rays.h"
 
 namespace kappa {
@@ -58,7 +59,7 @@ std::vector<SurfaceSample> camera_hits(const Scene& scene, const Accelerator& ac
     const Ray r = camera_ray(scene, camera, i, n, seed);
     const auto hit = accel.closest_hit(r);
     if (!hit) continue;
-    const SurfacePoint sp = surface_point(scene.triangles[hit->triangle], hit->b0, hit->b1, hit->b2);
+    const SurfacePoint sp = shading_point(scene, *hit).geometry;
     hits.push_back({sp, dot(sp.n, r.d) < 0.0f ? sp.n : -sp.n});
   }
   return hits;

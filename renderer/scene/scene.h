@@ -1,6 +1,8 @@
-// A loaded scene: flat triangle arrays, materials, camera, environment, film
-// size. Loading lives in scene_loader / obj_loader; the accelerator sees only
-// `triangles`.
+// A loaded scene, whatever format it came from: flat triangle arrays with a
+// material each and the vertex normals and texture coordinates their files
+// gave, materials, camera, environment, film size. Loading lives in
+// scene_loader (scene.json, or a bare mesh) and one loader per mesh format
+// behind mesh_file.h (obj/ today); the accelerator sees only `triangles`.
 #pragma once
 
 #include <cstdint>
@@ -9,17 +11,23 @@
 #include <vector>
 
 #include "accel/triangle.h"
+#include "core/vec2.h"
 #include "core/vec3.h"
+#include "renderer/scene/material.h"
 
 namespace kappa {
 
-/// Lambertian reflector that may also emit (one-sided, towards its normal).
-struct Material {
-  std::string name;
-  Vec3f albedo{0.5f, 0.5f, 0.5f};  ///< Kd, in [0, 1]
-  Vec3f emission{0, 0, 0};         ///< Ke, radiance (W sr^-1 m^-2, scene units)
+/// The normals a mesh file gives at a triangle's three vertices (OBJ `vn`),
+/// unit length; all three zero where it gives none.
+struct TriangleNormals {
+  Vec3f n[3];
+  bool given() const { return !(n[0] == Vec3f{0, 0, 0}); }
+};
 
-  bool emissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
+/// The texture coordinates at a triangle's three vertices (OBJ `vt`); where
+/// the file gives none, pbrt's (0, 0), (1, 0), (1, 1).
+struct TriangleUVs {
+  Vec2f uv[3] = {{0, 0}, {1, 0}, {1, 1}};
 };
 
 struct CameraSpec {
@@ -37,6 +45,11 @@ struct Scene {
   std::vector<std::filesystem::path> inputs;
   std::vector<Triangle> triangles;     ///< indexed by 32-bit TriangleId
   std::vector<std::uint32_t> material_of;  ///< per triangle, index into materials
+  /// Per triangle, once any mesh gave vertex normals (else empty: no memory
+  /// for a scene without them); indexed like `triangles`.
+  std::vector<TriangleNormals> normals;
+  /// Per triangle, once any mesh gave texture coordinates (else empty).
+  std::vector<TriangleUVs> uvs;
   std::vector<Material> materials;
   CameraSpec camera;
   bool camera_framed = false;  ///< the camera frames the bounds (no camera given): re-frame if the film changes

@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "renderer/scene/json_scan.h"
-#include "renderer/scene/obj_limits.h"
-#include "renderer/scene/obj_loader.h"
+#include "renderer/scene/obj/obj_limits.h"
+#include "renderer/scene/mesh_file.h"
 
 namespace kappa {
 namespace {
@@ -175,7 +175,7 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings, Tas
     // What else the path may be (a FIFO, a device) is refused by the OBJ
     // reader's input check, naming the mesh.
     if (!std::filesystem::exists(mesh, ec)) fail(file, 0, "mesh '" + mesh.string() + "' not found");
-    load_obj(mesh, scene, warnings, progress);
+    load_mesh_file(mesh, scene, warnings, progress);
   }
   if (!has_camera) {
     scene.camera = framing_camera(scene.bounds(), 39.3077f, float(scene.width) / float(scene.height));
@@ -189,7 +189,7 @@ Scene load_obj_scene(const std::filesystem::path& file, Warnings& warnings, Task
   scene.source = file;
   scene.name = scene_name(file);
   scene.environment = {1, 1, 1};
-  load_obj(file, scene, warnings, progress);
+  load_mesh_file(file, scene, warnings, progress);
   if (!scene.triangles.empty()) {
     scene.camera = framing_camera(scene.bounds(), 39.3077f, float(scene.width) / float(scene.height));
     scene.camera_framed = true;

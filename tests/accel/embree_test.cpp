@@ -18,7 +18,7 @@
 
 #include "accel/naive.h"
 #include "renderer/render/render_helpers.h"
-#include "renderer/scene/obj_loader.h"
+#include "renderer/scene/obj/obj_loader.h"
 #include "renderer/scene/scene_loader.h"
 #include "test_util.h"
 

@@ -14,7 +14,7 @@
 #include "accel/triangle_box.h"
 #include "agreement.h"
 #include "core/input_error.h"
-#include "renderer/scene/obj_loader.h"
+#include "renderer/scene/obj/obj_loader.h"
 #include "test_util.h"
 
 namespace kappa {

@@ -21,7 +21,7 @@
 #include "accel/naive.h"
 #include "core/check.h"
 #include "core/input_error.h"
-#include "renderer/scene/obj_limits.h"
+#include "renderer/scene/obj/obj_limits.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
-#include "renderer/scene/obj_limits.h"
+#include "renderer/scene/obj/obj_limits.h"
 #include "renderer/scene/scene_loader.h"
 
 namespace kappa::fuzz {

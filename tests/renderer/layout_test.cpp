@@ -22,7 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// A component is a header and its source file together ("renderer/scene/obj_scan").
+/// A component is a header and its source file together ("renderer/scene/obj/obj_scan").
 using Graph = std::map<std::string, std::set<std::string>>;
 
 /// grid_traverse.h is the body of grid.h's member templates (the walk, for
@@ -96,7 +96,7 @@ std::string find_cycle(const Graph& g) {
 /// "stats/cast" -> "stats": the top folder.
 std::string library_of(const std::string& component) { return fs::path(component).begin()->string(); }
 
-/// "renderer/scene/obj_scan" -> "scene"; a file at renderer/'s top (main, a
+/// "renderer/scene/obj/obj_scan" -> "scene"; a file at renderer/'s top (main, a
 /// shared header) is a room of its own: "main", "version".
 std::string room_of(const std::string& component) {
   const fs::path p(component);

@@ -13,7 +13,7 @@
 #include "accel/grid.h"
 #include "accel/grid_traverse.h"
 #include "core/thread_limit.h"
-#include "renderer/scene/obj_loader.h"
+#include "renderer/scene/obj/obj_loader.h"
 #include "stats/cast.h"
 #include "stats/cost_model.h"
 #include "stats/synthetic_rays.h"

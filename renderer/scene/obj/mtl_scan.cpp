@@ -1,4 +1,4 @@
-#include "renderer/scene/mtl_scan.h"
+#include "renderer/scene/obj/mtl_scan.h"
 
 #include <cmath>
 #include <cstdio>
@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "core/error.h"
-#include "renderer/scene/obj_limits.h"
-#include "renderer/scene/obj_scan.h"
+#include "renderer/scene/obj/obj_limits.h"
+#include "renderer/scene/obj/obj_scan.h"
 
 namespace kappa {
 

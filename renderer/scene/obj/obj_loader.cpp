@@ -1,4 +1,4 @@
-#include "renderer/scene/obj_loader.h"
+#include "renderer/scene/obj/obj_loader.h"
 
 #include <tiny_obj_loader.h>
 
@@ -10,9 +10,9 @@
 #include <sstream>
 #include <streambuf>
 
-#include "renderer/scene/mtl_scan.h"
-#include "renderer/scene/obj_limits.h"
-#include "renderer/scene/obj_scan.h"
+#include "renderer/scene/obj/mtl_scan.h"
+#include "renderer/scene/obj/obj_limits.h"
+#include "renderer/scene/obj/obj_scan.h"
 
 namespace kappa {
 namespace {
@@ -177,6 +177,29 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
     return Vec3f{attrib.vertices[3 * std::size_t(index)], attrib.vertices[3 * std::size_t(index) + 1],
                  attrib.vertices[3 * std::size_t(index) + 2]};
   };
+  // Vertex normals and texture coordinates, kept per triangle once the file
+  // has any (a scene without them keeps no array): what the shading point
+  // interpolates. A reference tinyobjloader could not resolve (-1, or past
+  // the end) is none.
+  const std::size_t normal_count = attrib.normals.size() / 3, uv_count = attrib.texcoords.size() / 2;
+  auto normal = [&](int index, Vec3f& out) {
+    if (index < 0 || std::size_t(index) >= normal_count) return false;
+    const Vec3f n{attrib.normals[3 * std::size_t(index)], attrib.normals[3 * std::size_t(index) + 1],
+                  attrib.normals[3 * std::size_t(index) + 2]};
+    const float len = length(n);
+    if (!(len > 0.0f) || !std::isfinite(len)) return false;
+    out = n / len;
+    return true;
+  };
+  auto uv = [&](int index, Vec2f& out) {
+    if (index < 0 || std::size_t(index) >= uv_count) return false;
+    out = {attrib.texcoords[2 * std::size_t(index)], attrib.texcoords[2 * std::size_t(index) + 1]};
+    return std::isfinite(out.u) && std::isfinite(out.v);
+  };
+  const bool keep_normals = normal_count > 0, keep_uvs = uv_count > 0;
+  // Meshes before this one without the attribute get the "none" value.
+  if (keep_normals) scene.normals.resize(scene.triangles.size());
+  if (keep_uvs) scene.uvs.resize(scene.triangles.size());
   std::size_t zero_area = 0, too_small = 0, before = scene.triangles.size();
   for (const tinyobj::shape_t& shape : shapes) {
     const auto& idx = shape.mesh.indices;
@@ -202,10 +225,27 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
       }
       const int mat = face < shape.mesh.material_ids.size() ? shape.mesh.material_ids[face] : -1;
       scene.triangles.push_back(tri);
+      if (keep_normals) {
+        TriangleNormals n;
+        if (!(normal(idx[f].normal_index, n.n[0]) && normal(idx[f + 1].normal_index, n.n[1]) &&
+              normal(idx[f + 2].normal_index, n.n[2])))
+          n = TriangleNormals{};  // all three, or none
+        scene.normals.push_back(n);
+      }
+      if (keep_uvs) {
+        TriangleUVs t;
+        if (!(uv(idx[f].texcoord_index, t.uv[0]) && uv(idx[f + 1].texcoord_index, t.uv[1]) &&
+              uv(idx[f + 2].texcoord_index, t.uv[2])))
+          t = TriangleUVs{};
+        scene.uvs.push_back(t);
+      }
       scene.material_of.push_back(mat >= 0 && std::size_t(mat) < materials.size() ? base + std::uint32_t(mat)
                                                                                    : default_material(scene));
     }
   }
+  // A mesh after one with normals or UVs, without its own, gets "none".
+  if (!scene.normals.empty()) scene.normals.resize(scene.triangles.size());
+  if (!scene.uvs.empty()) scene.uvs.resize(scene.triangles.size());
   if (zero_area > 0)
     warnings.push_back(located(obj, 0, std::to_string(zero_area) + " zero-area triangles dropped"));
   if (too_small > 0)

@@ -1,4 +1,4 @@
-#include "renderer/scene/obj_scan.h"
+#include "renderer/scene/obj/obj_scan.h"
 
 #include <charconv>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "renderer/scene/obj_limits.h"
+#include "renderer/scene/obj/obj_limits.h"
 
 namespace kappa {
 namespace {

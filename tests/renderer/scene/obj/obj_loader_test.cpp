@@ -1,5 +1,5 @@
 // OBJ loading: triangulation, materials, the checks tinyobjloader does not make.
-#include "renderer/scene/obj_loader.h"
+#include "renderer/scene/obj/obj_loader.h"
 
 #include <gtest/gtest.h>
 
@@ -109,6 +109,33 @@ TEST(ObjLoader, CrlfAndMissingFinalNewlineLoad) {
   Warnings w;
   EXPECT_EQ(load("v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3", w).triangles.size(), 1u);
   EXPECT_TRUE(w.empty());
+}
+
+// vn and vt are kept per triangle (the shading point reads them); a face
+// without them gets "none"; a file without any keeps no array.
+TEST(ObjLoader, VertexNormalsAndTextureCoordinatesAreKeptPerTriangle) {
+  Warnings w;
+  const Scene plain = load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", w);
+  EXPECT_TRUE(plain.normals.empty());
+  EXPECT_TRUE(plain.uvs.empty());
+  const Scene s = load(
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
+      "vn 0 0 2\nvn 0 1 1\n"
+      "vt 0.25 0.5\nvt 1 0\nvt 0 1\n"
+      "f 1/1/1 2/2/2 3/3/1\n"
+      "f 2 4 3\n",
+      w);
+  ASSERT_EQ(s.triangles.size(), 2u);
+  ASSERT_EQ(s.normals.size(), 2u);
+  ASSERT_EQ(s.uvs.size(), 2u);
+  EXPECT_TRUE(s.normals[0].given());
+  EXPECT_EQ(s.normals[0].n[0], (Vec3f{0, 0, 1}));  // normalised
+  EXPECT_NEAR(s.normals[0].n[1].y, 0.70710678f, 1e-6f);
+  EXPECT_FALSE(s.normals[1].given());
+  EXPECT_EQ(s.uvs[0].uv[0], (Vec2f{0.25f, 0.5f}));
+  EXPECT_EQ(s.uvs[0].uv[2], (Vec2f{0, 1}));
+  EXPECT_EQ(s.uvs[1].uv[1], (Vec2f{1, 0}));  // pbrt's default (0,0), (1,0), (1,1)
+  EXPECT_EQ(s.uvs[1].uv[2], (Vec2f{1, 1}));
 }
 
 }  // namespace
