@@ -25,7 +25,7 @@ RenderResult render_plain(const Scene& scene, const Accelerator& accel, const Re
                           const ProgressCallback& progress);
 
 /// Statistics on with a grid: its walk with per-class counters, per cell
-/// and in total (render_counting.cpp).
+/// and in total (render_counting.h).
 RenderResult render_counting(const Scene& scene, const UniformGrid& grid, const RenderSettings& settings, Film& film,
                              const ProgressCallback& progress);
 RenderResult render_counting(const Scene& scene, const NestedGrid& grid, const RenderSettings& settings, Film& film,

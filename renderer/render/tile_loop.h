@@ -1,7 +1,7 @@
 // The tile loop of a frame, for one choice of queries: each translation unit
 // that renders instantiates it once, so the plain frame (integrator.cpp) is
 // compiled alone, exactly as in a build without statistics, and the counting
-// frame (render_counting.cpp) beside it. Inside, one loop per sampler and
+// frame (render_counting.h) beside it. Inside, one loop per sampler and
 // integrator variant (path_variant.h), the pair chosen once per frame. A
 // frame runs in passes: one of settings.spp, or as many as a PassControl's
 // planner asks for.

@@ -1,12 +1,15 @@
 // The grids' frames with statistics on: their walks instantiated with per-class
 // counters, per cell (every path into per-thread arrays, or sampled paths
 // into one shared set) and in total, within --grid-max-bytes (plan_per_cell).
+// Instantiated once per grid, each in its own translation unit
+// (render_counting_grid.cpp, render_counting_grid2.cpp): the frame's
+// variants x samplers x per-cell modes made one file the build's longest.
+#pragma once
+
 #include <tbb/enumerable_thread_specific.h>
 
 #include <memory>
 
-#include "accel/grid2_traverse.h"
-#include "accel/grid_traverse.h"
 #include "core/thread_limit.h"
 #include "renderer/render/frames.h"
 #include "renderer/render/queries.h"
@@ -14,9 +17,7 @@
 #include "stats/per_cell_budget.h"
 #include "stats/query_clock.h"
 
-namespace kappa {
-
-namespace {
+namespace kappa::detail {
 
 template <class Walker>
 RenderResult render_counting_with(const Scene& scene, const Walker& grid, const RenderSettings& settings, Film& film,
@@ -56,16 +57,4 @@ RenderResult render_counting_with(const Scene& scene, const Walker& grid, const 
   return result;
 }
 
-}  // namespace
-
-RenderResult render_counting(const Scene& scene, const UniformGrid& grid, const RenderSettings& settings, Film& film,
-                             const ProgressCallback& progress) {
-  return render_counting_with(scene, grid, settings, film, progress);
-}
-
-RenderResult render_counting(const Scene& scene, const NestedGrid& grid, const RenderSettings& settings, Film& film,
-                             const ProgressCallback& progress) {
-  return render_counting_with(scene, grid, settings, film, progress);
-}
-
-}  // namespace kappa
+}  // namespace kappa::detail
