@@ -123,6 +123,28 @@ class CellCounters {
   /// Counts only the totals.
   using TotalsTally = BasicTally<PerCell::no>;
 
+  /// One walk counted in two sets of counters (a bounce ray in its depth's
+  /// class and in its lobe's), each as a BasicTally would.
+  template <PerCell Mode>
+  class TeeTally {
+   public:
+    TeeTally(CellCounters& a, CellCounters& b) : m_a(a), m_b(b) {}
+    template <class BoxFn>
+    void cell(std::uint64_t c, int level, BoxFn&& box) {
+      m_a.cell(c, level, box);
+      m_b.cell(c, level, box);
+    }
+    void test() {}
+    void hit() {}
+    void finish(const WalkCounts& w, const WalkSegment& segment) {
+      m_a.finish(w, segment);
+      m_b.finish(w, segment);
+    }
+
+   private:
+    BasicTally<Mode> m_a, m_b;
+  };
+
   /// Queries counted per cell (all of them unless per-cell counting was
   /// sampled): the denominator of p_i.
   std::uint64_t per_cell_queries() const { return m_per_cell_queries; }

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The README's two pictures: the Cornell box rendered, and its cell map
+# The README's pictures: the Cornell box rendered, and its cell map
 # (per-cell ray visits p in red, triangles Theta in green, summed along y) on
-# a 64^3 grid, so that the map has cells enough to show the boxes.
+# a 64^3 grid, so that the map has cells enough to show the boxes; the
+# material test scene and Veach's MIS scene rendered.
 #   tools/readme_images.sh    (after tools/build.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,3 +11,7 @@ trap 'rm -rf "$tmp"' EXIT
 build/kappa render assets/cornell-box/scene.json --spp 256 --width 400 --height 400 --grid-res 64 -q \
   --out "$tmp/cornell-box.exr" --cell-map docs/images/cornell-box-cells.png
 build/exr_to_png "$tmp/cornell-box.exr" docs/images/cornell-box.png
+build/kappa render assets/material-box/scene.json --spp 256 --width 400 --height 400 -q --out "$tmp/material-box.exr"
+build/exr_to_png "$tmp/material-box.exr" docs/images/material-box.png
+build/kappa render assets/veach-mis/scene.json --spp 256 --width 400 --height 300 -q --out "$tmp/veach-mis.exr"
+build/exr_to_png "$tmp/veach-mis.exr" docs/images/veach-mis.png

@@ -105,6 +105,8 @@ else
   scene_list=(
     "cornell-box|$shared/cornell-box/scene.json|$repo/assets/cornell-box/scene.json"
     "bunny-lowres|$shared/bunny/scene_lowres.json|$repo/assets/bunny-lowres/scene_lowres.json"
+    "material-box|$repo/assets/material-box/scene.json"
+    "veach-mis|$repo/assets/veach-mis/scene.json"
     "teapot-in-stadium|$shared/teapot-in-stadium/scene.json"
     "sponza|$shared/sponza/scene.json"
     "bunny|$shared/bunny/scene.json"

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "core/check.h"
+#include "renderer/bsdf/bsdf.h"
 #include "renderer/render/frame.h"
 #include "renderer/render/interaction.h"
 #include "renderer/render/lights.h"
@@ -37,6 +38,13 @@ class PathTracer {
   SceneLighting lighting() const {
     return {m_lights.triangle_count() > 0, !(m_scene.environment == Vec3f{0, 0, 0}), m_lights.pmf_environment() > 0.0f};
   }
+  /// What its surfaces need, for choose_path_variant.
+  SceneSurfaces surfaces() const {
+    SceneSurfaces s;
+    for (const TriangleNormals& n : m_scene.normals) s.vertex_normals = s.vertex_normals || n.given();
+    for (const Material& m : m_scene.materials) s.non_lambertian = s.non_lambertian || !m.lambertian();
+    return s;
+  }
 
   /// Radiance arriving along `ray`, asking every visibility query through
   /// `q` (PlainQueries or CountingQueries, chosen once per frame), each
@@ -51,12 +59,20 @@ class PathTracer {
     Vec3f beta{1, 1, 1};
     float prev_bsdf_pdf = 0;  // solid-angle pdf of the direction that led here
     Vec3f prev_normal;        // oriented normal at the previous vertex
+    // The direction that led here came from a delta lobe (a mirror, glass):
+    // light sampling could not have found what it reaches.
+    bool prev_delta = false;
+    float eta_scale = 1;  // the refractions' 1/eta^2 undone for Russian roulette (pbrt-v4)
+    bsdf::Lobe lobe = bsdf::Lobe::diffuse;  // the lobe that sampled the current ray
 
     for (int depth = 0;; ++depth) {
-      const std::optional<Hit> hit = q.closest(ray, depth);
+      // A scene with materials counts its bounce rays by lobe too.
+      std::optional<Hit> hit;
+      if constexpr (V.surfaces == Surfaces::general) hit = q.closest_by_lobe(ray, depth, lobe);
+      else hit = q.closest(ray, depth);
       if (!hit) {
         if constexpr (V.environment) {
-          if (depth == 0 || !kLightSamples) {
+          if (depth == 0 || !kLightSamples || prev_delta) {
             L += beta * m_scene.environment;
           } else if constexpr (kMis) {
             const float light_pdf =
@@ -64,13 +80,17 @@ class PathTracer {
             L += beta * m_scene.environment * power_heuristic(prev_bsdf_pdf, light_pdf);
           } else if (m_lights.pmf_environment() == 0.0f) {
             L += beta * m_scene.environment;  // nee: an environment light sampling cannot pick
+          } else if constexpr (V.surfaces == Surfaces::general) {
+            // nee: light sampling draws the environment about the oriented
+            // normal; what refraction reached below it only BSDF sampling finds.
+            if (!(dot(prev_normal, ray.d) > 0.0f)) L += beta * m_scene.environment;
           }
         }
         break;
       }
       // Shading reads the shading point, never the accelerator's hit. The
-      // Lambertian BSDF uses the geometric normal: the shading normal and
-      // UVs are there for the materials that read them.
+      // geometric normal decides sides and ray offsets; the shading normal
+      // only bends the BSDF (Surfaces::lambertian_smooth and general).
       const ShadingPoint shading = shading_point(m_scene, *hit);
       const Material& mat = *shading.material;
       const SurfacePoint& sp = shading.geometry;
@@ -84,9 +104,9 @@ class PathTracer {
 
       // Emission: one-sided, towards the geometric normal.
       if (mat.emissive() && cos_o > 0.0f) {
-        if (depth == 0 || !V.triangle_lights) {
-          // Seen directly, or no emitter is a light: BSDF sampling alone
-          // finds it and carries its whole weight.
+        if (depth == 0 || !V.triangle_lights || prev_delta) {
+          // Seen directly (or through delta lobes), or no emitter is a light:
+          // BSDF sampling alone finds it and carries its whole weight.
           L += beta * mat.emission;
         } else {
           // An emitter too dim to be a light (pmf 0) is reached only by BSDF
@@ -104,14 +124,24 @@ class PathTracer {
         }
       }
       if (depth >= m_settings.max_depth) break;
+      if constexpr (V.surfaces == Surfaces::general) {
+        if (!scatter_general<V>(shading, wo, n, depth, sampler, q, L, beta, ray, prev_bsdf_pdf, prev_normal, prev_delta,
+                                eta_scale, lobe))
+          break;
+        continue;
+      }
       if (mat.albedo == Vec3f{0, 0, 0}) break;  // black: nothing more to gather
 
+      // The Lambertian vertex: about the geometric normal, or about the
+      // shading normal (turned to the viewer's side) where the mesh gives one.
+      Vec3f ns = n;
+      if constexpr (V.surfaces == Surfaces::lambertian_smooth) ns = shading_side(shading.shading_normal, n, wo);
       const Vec3f f = mat.albedo * std::numbers::inv_pi_v<float>;  // Lambertian BSDF
       if constexpr (kLightSamples) {
         // The general variant (both kinds on) keeps the run-time test for a
         // scene without lights; a specialised one knows it has some.
         if (!(V.triangle_lights && V.environment) || !m_lights.empty())
-          L += beta * direct_light<V>(sp, n, f, sampler, depth, q);
+          L += beta * direct_light<V>(sp, n, ns, f, sampler, depth, q);
       }
 
       // Continue the path by sampling the BSDF (cosine-weighted hemisphere).
@@ -119,7 +149,10 @@ class PathTracer {
       const Vec3f local = sample_cosine_hemisphere(v1, v2);
       const float pdf = cosine_hemisphere_pdf(local.z);
       if (!(pdf > 0.0f)) break;
-      const Vec3f wi = Frame(n).to_world(local);
+      const Vec3f wi = Frame(ns).to_world(local);
+      if constexpr (V.surfaces == Surfaces::lambertian_smooth) {
+        if (!(dot(wi, n) > 0.0f)) break;  // below the geometric surface: black
+      }
       beta *= mat.albedo;  // f * cos / pdf
       prev_bsdf_pdf = pdf;
       prev_normal = n;
@@ -135,11 +168,138 @@ class PathTracer {
   }
 
  private:
-  /// One light sample, weighted against BSDF sampling by MIS (or alone, nee).
+  /// The shading normal on the side of the oriented geometric normal n (the
+  /// viewer's side), or n itself where the shading normal faces away from the
+  /// viewer (a silhouette of a smooth mesh: it would leave a black spot).
+  static Vec3f shading_side(Vec3f ns, const Vec3f& n, const Vec3f& wo) {
+    if (dot(ns, n) < 0.0f) ns = -ns;
+    return dot(ns, wo) > 0.0f ? ns : n;
+  }
+
+  /// A light sample's direction and what it brings before the surface's
+  /// response: emitted radiance over the light sampling's pdf, and that pdf
+  /// (solid angle). None when the sample brings nothing or is occluded.
+  struct LightSample {
+    Vec3f wi;
+    Vec3f Le_over_pdf;
+    float pdf = 0;
+  };
+
+  /// One light sample at a vertex with oriented geometric normal n, for a
+  /// surface that may transmit (`two_sided`: a light behind n counts).
   template <PathVariant V, class Sampler, class Queries>
-  Vec3f direct_light(const SurfacePoint& sp, const Vec3f& n, const Vec3f& f, Sampler& sampler, int depth,
-                     Queries& q) const {
+  std::optional<LightSample> sample_light(const SurfacePoint& sp, const Vec3f& n, bool two_sided, Sampler& sampler,
+                                          int depth, Queries& q) const {
+    const double choice = sampler.get1D_double(path_dimensions::light_choice(depth));
+    const auto [u1, u2] = sampler.get2D(path_dimensions::light_point(depth));
+    std::size_t light = m_lights.environment_index();
+    if constexpr (V.triangle_lights) light = m_lights.choose(choice);
+    else (void)choice;
+    if constexpr (V.environment) {
+      if (light == m_lights.environment_index()) {
+        // Cosine-weighted about the oriented normal, as for the Lambertian
+        // vertex: the same light pdf that the escaped ray's MIS weight reads.
+        const Vec3f local = sample_cosine_hemisphere(u1, u2);
+        const float dir_pdf = cosine_hemisphere_pdf(local.z);
+        if (!(dir_pdf > 0.0f)) return std::nullopt;
+        const Vec3f wi = Frame(n).to_world(local);
+        const float light_pdf = m_lights.pmf_environment() * dir_pdf;
+        if (!(light_pdf > 0.0f)) return std::nullopt;
+        if (q.shadow(Ray{offset_ray_origin(sp, wi), wi})) return std::nullopt;
+        return LightSample{wi, m_scene.environment / light_pdf, light_pdf};
+      }
+    }
+    if constexpr (V.triangle_lights) {
+      const TriangleId id = m_lights.triangle(light);
+      const Triangle& tri = m_scene.triangles[id];
+      float b0, b1, b2;
+      sample_triangle(u1, u2, b0, b1, b2);
+      const SurfacePoint lp = surface_point(tri, b0, b1, b2);
+      const Vec3f to_light = lp.p - sp.p;
+      const float dist2 = dot(to_light, to_light);
+      if (!(dist2 > 0.0f)) return std::nullopt;
+      const Vec3f wi = to_light / std::sqrt(dist2);
+      const float cos_s = dot(n, wi);
+      const float cos_l = -dot(lp.n, wi);
+      if ((!two_sided && cos_s <= 0.0f) || cos_s == 0.0f || cos_l <= 0.0f) return std::nullopt;
+      const float light_pdf = m_lights.pmf(light) * dist2 / (cos_l * m_lights.area(light));
+      if (!(light_pdf > 0.0f) || !std::isfinite(light_pdf)) return std::nullopt;
+
+      const Vec3f from = offset_ray_origin(sp, wi);
+      const Vec3f to = offset_ray_origin(lp, -wi);
+      const Vec3f d = to - from;
+      const float len = length(d);
+      if (!(len > 0.0f)) return std::nullopt;
+      if (q.shadow(Ray{from, d / len, 0.0f, len * (1.0f - kShadowEpsilon)})) return std::nullopt;
+      const Vec3f Le = m_scene.materials[m_scene.material_of[id]].emission;
+      return LightSample{wi, Le / light_pdf, light_pdf};
+    }
+    return std::nullopt;
+  }
+
+  /// The general vertex (V.surfaces == general): light sampling through the
+  /// BSDF's non-delta lobes, then the BSDF's own sample continues the path.
+  /// False when the path ends here.
+  template <PathVariant V, class Sampler, class Queries>
+  bool scatter_general(const ShadingPoint& shading, const Vec3f& wo, const Vec3f& n, int depth, Sampler& sampler,
+                       Queries& q, Vec3f& L, Vec3f& beta, Ray& ray, float& prev_bsdf_pdf, Vec3f& prev_normal,
+                       bool& prev_delta, float& eta_scale, bsdf::Lobe& lobe) const {
     constexpr bool kMis = V.strategy == LightSampling::mis;
+    constexpr bool kLightSamples = V.strategy != LightSampling::bsdf;
+    const Material& mat = *shading.material;
+    const SurfacePoint& sp = shading.geometry;
+    const bsdf::Bsdf f(mat, sp.n, shading.shading_normal, wo);
+    if constexpr (kLightSamples) {
+      // Delta lobes alone: no light sample can reach them (the numbers of
+      // its dimensions are left unread).
+      if (!f.delta_only() && !m_lights.empty()) {
+        if (const auto ls = sample_light<V>(sp, n, mat.transmission > 0.0f, sampler, depth, q)) {
+          const Vec3f f_cos = f.eval_cos(wo, ls->wi);
+          if (!(f_cos == Vec3f{0, 0, 0})) {
+            const float weight = kMis ? power_heuristic(ls->pdf, f.pdf(wo, ls->wi)) : 1.0f;
+            L += beta * f_cos * ls->Le_over_pdf * weight;
+          }
+        }
+      }
+    }
+    const float uc = sampler.get1D(path_dimensions::bsdf_lobe(depth));
+    const auto [v1, v2] = sampler.get2D(path_dimensions::bsdf(depth));
+    const std::optional<bsdf::WorldSample> s = f.sample(wo, uc, v1, v2);
+    if (!s || !(s->pdf > 0.0f)) return false;
+    const Vec3f weight = s->f_cos / s->pdf;
+    if (weight == Vec3f{0, 0, 0} || !is_finite(weight)) return false;
+    beta *= weight;
+    prev_bsdf_pdf = s->pdf;
+    prev_normal = n;
+    prev_delta = s->delta;
+    lobe = s->lobe;
+    if (s->lobe == bsdf::Lobe::transmission) eta_scale *= s->etap * s->etap;
+    ray = Ray{offset_ray_origin(sp, s->wi), s->wi};
+
+    if (m_settings.rr_depth >= 0 && depth + 1 >= m_settings.rr_depth) {
+      const float q_end = std::max(0.0f, 1.0f - max_component(beta * eta_scale));
+      if (sampler.get1D(path_dimensions::roulette(depth)) < q_end) return false;
+      beta /= 1.0f - q_end;
+    }
+    return true;
+  }
+
+  /// One light sample, weighted against BSDF sampling by MIS (or alone, nee),
+  /// for the Lambertian vertex: the cosine about ns, the shading normal
+  /// (n itself unless V.surfaces is lambertian_smooth).
+  template <PathVariant V, class Sampler, class Queries>
+  Vec3f direct_light(const SurfacePoint& sp, const Vec3f& n, const Vec3f& ns, const Vec3f& f, Sampler& sampler,
+                     int depth, Queries& q) const {
+    constexpr bool kMis = V.strategy == LightSampling::mis;
+    if constexpr (V.surfaces == Surfaces::lambertian_smooth) {
+      const auto ls = sample_light<V>(sp, n, false, sampler, depth, q);
+      if (!ls) return {};
+      const float cos_s = dot(ns, ls->wi);
+      if (!(cos_s > 0.0f)) return {};
+      const float weight = kMis ? power_heuristic(ls->pdf, cosine_hemisphere_pdf(cos_s)) : 1.0f;
+      return f * ls->Le_over_pdf * (cos_s * weight);
+    }
+    (void)ns;
     // The light choice's number is drawn even when there is one kind of
     // light, so that every variant reads the same numbers (an independent
     // sampler's stream is in order) and renders the general one's image.

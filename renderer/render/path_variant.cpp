@@ -20,14 +20,24 @@ LightSampling parse_light_sampling(const std::string& name) {
   throw InputError("--light-sampling: unknown strategy '" + name + "' (expected mis, nee or bsdf)");
 }
 
-PathVariant choose_path_variant(SceneLighting scene, LightSampling strategy, bool aovs, bool specialise) {
+PathVariant choose_path_variant(SceneLighting scene, LightSampling strategy, bool aovs, bool specialise,
+                                SceneSurfaces surfaces) {
   PathVariant v{strategy, true, true, aovs || !specialise};
   if (v.strategy == LightSampling::bsdf) v.triangle_lights = false;
-  if (!specialise) return v;
-  if (v.strategy != LightSampling::bsdf) v.triangle_lights = scene.triangle_lights;
-  v.environment = scene.environment;
-  // Nothing light sampling could pick: BSDF sampling alone, the same estimator.
-  if (!v.triangle_lights && !(v.environment && scene.environment_light)) v.strategy = LightSampling::bsdf;
+  if (specialise) {
+    if (v.strategy != LightSampling::bsdf) v.triangle_lights = scene.triangle_lights;
+    v.environment = scene.environment;
+    // Nothing light sampling could pick: BSDF sampling alone, the same estimator.
+    if (!v.triangle_lights && !(v.environment && scene.environment_light)) v.strategy = LightSampling::bsdf;
+  }
+  v.surfaces = surfaces.non_lambertian ? Surfaces::general
+               : surfaces.vertex_normals ? Surfaces::lambertian_smooth
+                                         : Surfaces::lambertian;
+  if (v.surfaces != Surfaces::lambertian) {
+    // Compiled with every light on only (path_variant.h).
+    v.triangle_lights = v.strategy != LightSampling::bsdf;
+    v.environment = true;
+  }
   return v;
 }
 
@@ -39,6 +49,8 @@ std::string path_variant_name(const PathVariant& v) {
   } else if (v.environment) {
     name += " + environment";
   }
+  if (v.surfaces == Surfaces::lambertian_smooth) name += ", shading normals";
+  if (v.surfaces == Surfaces::general) name += ", materials";
   if (v.aovs) name += ", first hit";
   return name;
 }

@@ -6,6 +6,13 @@
 // branch behind run-time checks, as one integrator for all scenes would; it
 // renders the same image bit for bit, which the tests check, and
 // `--specialise off` selects it to measure what specialising saves.
+//
+// The surfaces are part of the choice too (SceneSurfaces): a scene whose
+// materials are all Lambertian and that gives no vertex normals runs the
+// Lambertian code of before materials existed (bitwise its images); vertex
+// normals add the shading normal to it; any other material runs the general
+// BSDF (renderer/bsdf/). The last two are compiled with every light on (the
+// general variant of each strategy), which keeps the build's size in check.
 #pragma once
 
 #include <array>
@@ -28,6 +35,13 @@ const char* light_sampling_name(LightSampling strategy);
 /// The strategy of a --light-sampling name; throws InputError for another.
 LightSampling parse_light_sampling(const std::string& name);
 
+/// What a path's vertices scatter with.
+enum class Surfaces : unsigned char {
+  lambertian,         ///< albedo / pi about the geometric normal: the code before materials
+  lambertian_smooth,  ///< albedo / pi about the shading normal (the mesh's vertex normals)
+  general,            ///< the layered BSDF (renderer/bsdf/principled.h), shading normals
+};
+
 /// What one compiled integrator does. With `bsdf` there are no triangle
 /// lights to sample; a scene with neither lights runs `bsdf` whatever was
 /// asked (no light to sample, so every strategy is the same estimator).
@@ -36,19 +50,26 @@ struct PathVariant {
   bool triangle_lights = true;  ///< emissive triangles are sampled (next-event estimation)
   bool environment = true;      ///< rays that escape read the environment, which is also sampled unless bsdf
   bool aovs = true;             ///< the camera ray's first hit is recorded (albedo, normal, depth, cost AOVs)
+  Surfaces surfaces = Surfaces::lambertian;
 };
 
 /// Every variant the frames are compiled for: with AOVs and without, the
 /// strategies with lights (mis and nee: triangles, environment or both),
-/// bsdf (with and without the environment).
-inline constexpr std::array<PathVariant, 16> kPathVariants = [] {
-  std::array<PathVariant, 16> v{};
+/// bsdf (with and without the environment), on Lambertian surfaces; and each
+/// strategy's general variant on the other two kinds of surfaces.
+inline constexpr std::array<PathVariant, 28> kPathVariants = [] {
+  std::array<PathVariant, 28> v{};
   std::size_t i = 0;
   for (bool aovs : {false, true}) {
     for (LightSampling s : {LightSampling::mis, LightSampling::nee})
       for (auto [t, e] : {std::pair{true, false}, std::pair{false, true}, std::pair{true, true}}) v[i++] = {s, t, e, aovs};
     v[i++] = {LightSampling::bsdf, false, false, aovs};
     v[i++] = {LightSampling::bsdf, false, true, aovs};
+    for (Surfaces k : {Surfaces::lambertian_smooth, Surfaces::general}) {
+      v[i++] = {LightSampling::mis, true, true, aovs, k};
+      v[i++] = {LightSampling::nee, true, true, aovs, k};
+      v[i++] = {LightSampling::bsdf, false, true, aovs, k};
+    }
   }
   return v;
 }();
@@ -60,9 +81,18 @@ struct SceneLighting {
   bool environment_light = false;  ///< one light sampling can pick (its power does not round to 0)
 };
 
+/// What the scene's surfaces need (Scene::materials, Scene::normals).
+struct SceneSurfaces {
+  bool vertex_normals = false;     ///< some triangle has its mesh's vertex normals
+  bool non_lambertian = false;     ///< some material is not Material::lambertian()
+};
+
 /// The variant for a scene and the settings; `specialise` false gives the
-/// strategy's general variant (everything on, behind run-time checks).
-PathVariant choose_path_variant(SceneLighting scene, LightSampling strategy, bool aovs, bool specialise);
+/// strategy's general variant (every light on, behind run-time checks). The
+/// surfaces are the scene's whatever `specialise` says: Lambertian code
+/// cannot render glass.
+PathVariant choose_path_variant(SceneLighting scene, LightSampling strategy, bool aovs, bool specialise,
+                                SceneSurfaces surfaces = {});
 
 /// "mis: triangles + environment", "bsdf", ... (the report's render.path_variant).
 std::string path_variant_name(const PathVariant& v);
@@ -75,6 +105,7 @@ void with_path_variant(const PathVariant& v, F&& f) {
   const bool ran = [&]<std::size_t... I>(std::index_sequence<I...>) {
     return ((v.strategy == kPathVariants[I].strategy && v.triangle_lights == kPathVariants[I].triangle_lights &&
              v.environment == kPathVariants[I].environment && v.aovs == kPathVariants[I].aovs &&
+             v.surfaces == kPathVariants[I].surfaces &&
              (f.template operator()<kPathVariants[I]>(), true)) ||
             ...);
   }(std::make_index_sequence<kPathVariants.size()>{});

@@ -25,6 +25,7 @@ struct RecordingQueries {
   void begin_path(std::uint64_t /*pixel*/, std::uint64_t /*sample*/) {}
 
   std::optional<Hit> closest(const Ray& r, int depth) { return record(r, class_of_depth(depth)); }
+  std::optional<Hit> closest_by_lobe(const Ray& r, int depth, bsdf::Lobe /*lobe*/) { return closest(r, depth); }
   bool shadow(const Ray& r) { return record(r, kShadow).has_value(); }
 
  private:

@@ -14,12 +14,15 @@
 
 #include "accel/accel.h"
 #include "core/hash.h"
+#include "renderer/bsdf/lobe_sample.h"
 #include "renderer/render/sampling.h"
 #include "stats/cost_model.h"
 #include "stats/query_clock.h"
 #include "stats/render_counters.h"
 
 namespace kappa {
+
+static_assert(bsdf::kLobes == kBounceLobes, "the report's lobes are the BSDF's, in its order");
 
 /// Cumulative work of one thread's queries: what the cost AOVs difference.
 struct QueryWork {
@@ -38,6 +41,7 @@ struct PlainQueries {
     ++rays;
     return accel.closest_hit(r);
   }
+  std::optional<Hit> closest_by_lobe(const Ray& r, int depth, bsdf::Lobe /*lobe*/) { return closest(r, depth); }
   bool shadow(const Ray& r) {
     ++rays;
     return accel.any_hit(r);
@@ -50,13 +54,16 @@ class QueryTimer {
  public:
   explicit QueryTimer(RenderCounters& counters) : m_counters(counters) {}
 
+  /// Returns the ticks it added to class k's.
   template <typename F>
-  void timed(RenderClass k, F&& query) {
+  std::uint64_t timed(RenderClass k, F&& query) {
     const std::uint64_t start = m_clock.now();
     query();
     bool capped = false;
-    m_counters.ticks[k] += m_clock.elapsed(start, m_clock.now(), capped);
+    const std::uint64_t ticks = m_clock.elapsed(start, m_clock.now(), capped);
+    m_counters.ticks[k] += ticks;
     m_counters.capped[k] += capped;
+    return ticks;
   }
 
  private:
@@ -78,19 +85,30 @@ class ClassQueries {
   std::optional<Hit> closest(const Ray& r, int depth) {
     return counted<std::optional<Hit>>(class_of_depth(depth), [&] { return m_accel.closest_hit(r); });
   }
+  /// A bounce ray counted in its class and in its lobe's totals.
+  std::optional<Hit> closest_by_lobe(const Ray& r, int depth, bsdf::Lobe lobe) {
+    return counted<std::optional<Hit>>(class_of_depth(depth), [&] { return m_accel.closest_hit(r); },
+                                       depth > 0 ? &m_counters.lobes[std::size_t(lobe)] : nullptr,
+                                       std::size_t(lobe));
+  }
   bool shadow(const Ray& r) {
     return counted<bool>(kShadow, [&] { return m_accel.any_hit(r); });
   }
 
  private:
   template <typename Result, typename F>
-  Result counted(RenderClass k, F&& query) {
+  Result counted(RenderClass k, F&& query, CellCounters* lobe = nullptr, std::size_t lobe_index = 0) {
     ++rays;
     ClassTotals& t = m_counters.classes[k].totals;
     Result result{};
     ++t.rays;
-    m_clock.timed(k, [&] { result = query(); });
+    const std::uint64_t ticks = m_clock.timed(k, [&] { result = query(); });
     t.hits += bool(result);
+    if (lobe) {
+      ++lobe->totals.rays;
+      lobe->totals.hits += bool(result);
+      m_counters.lobe_ticks[lobe_index] += ticks;
+    }
     return result;
   }
 
@@ -145,6 +163,31 @@ class CountingQueries {
   std::optional<Hit> closest(const Ray& r, int depth) {
     return counted<std::optional<Hit>>(class_of_depth(depth), [&](auto& tally) { return m_walker.closest_hit(r, tally); });
   }
+  /// A bounce ray walked once and counted twice: in its depth's class and
+  /// in the lobe's that sampled it (frames of a scene with materials only).
+  std::optional<Hit> closest_by_lobe(const Ray& r, int depth, bsdf::Lobe lobe) {
+    if (depth == 0) return closest(r, depth);
+    const RenderClass k = class_of_depth(depth);
+    const std::size_t l = std::size_t(lobe);
+    CellCounters& c = m_counters.classes[k];
+    CellCounters& b = m_counters.lobes[l];
+    ++rays;
+    ++c.totals.rays;
+    ++b.totals.rays;
+    std::optional<Hit> result;
+    const std::uint64_t ticks = m_clock.timed(k, [&] {
+      if (m_path_per_cell && b.per_cell()) {
+        result = walk_tee(c, b, r);
+      } else {
+        CellCounters::TeeTally<PerCell::no> tally(c, b);
+        result = m_walker.closest_hit(r, tally);
+      }
+    });
+    m_counters.lobe_ticks[l] += ticks;
+    c.totals.hits += bool(result);
+    b.totals.hits += bool(result);
+    return result;
+  }
 
   bool shadow(const Ray& r) {
     return counted<bool>(kShadow, [&](auto& tally) { return m_walker.any_hit(r, tally); });
@@ -177,6 +220,11 @@ class CountingQueries {
   [[gnu::noinline]] static Result walk_per_cell(CellCounters& c, Walk& walk) {
     CellCounters::BasicTally<SampledMode> tally(c);
     return walk(tally);
+  }
+
+  [[gnu::noinline]] std::optional<Hit> walk_tee(CellCounters& c, CellCounters& b, const Ray& r) const {
+    CellCounters::TeeTally<SampledMode> tally(c, b);
+    return m_walker.closest_hit(r, tally);
   }
 
   const Walker& m_walker;

@@ -27,12 +27,16 @@ RenderResult render_counting_with(const Scene& scene, const Walker& grid, const 
   const std::uint64_t n = cells.cell_count();
   const Vec3d size = cells.uniform_cell_size().value_or(Vec3d{});
   const std::uint64_t asked = settings.cell_sample > 0 ? settings.cell_sample : auto_cell_sample(n);
-  const PerCellPlan plan = plan_per_cell(n, kRenderClasses, std::uint64_t(active_threads()), asked, grid.bytes(),
-                                         settings.stats_max_bytes);
+  // Lobes are counted apart only where a surface is not Lambertian (RenderCounters).
+  bool lobes = false;
+  for (const Material& m : scene.materials) lobes = lobes || !m.lambertian();
+  const PerCellPlan plan = plan_per_cell(n, lobes ? kCountedSets : kRenderClasses, std::uint64_t(active_threads()),
+                                         asked, grid.bytes(), settings.stats_max_bytes);
   const CellSampling sampling{plan.every, settings.seed};
-  const SharedCellArrays shared = plan.mode == PerCell::shared ? make_shared_cell_arrays(n) : SharedCellArrays{};
+  const SharedCellArrays shared =
+      plan.mode == PerCell::shared ? make_shared_cell_arrays(n, lobes) : SharedCellArrays{};
   tbb::enumerable_thread_specific<RenderCounters> per_thread([&] {
-    return shared[0] ? RenderCounters(shared, size) : RenderCounters(n, size, plan.mode == PerCell::own);
+    return shared[0] ? RenderCounters(shared, size) : RenderCounters(n, size, plan.mode == PerCell::own, lobes);
   });
   RenderResult result;
   if (shared[0])
@@ -50,7 +54,7 @@ RenderResult render_counting_with(const Scene& scene, const Walker& grid, const 
     if (!merged) merged = std::make_shared<RenderCounters>(std::move(c));
     else merged->merge(c);
   }
-  if (!merged) merged = std::make_shared<RenderCounters>(n, size, plan.mode == PerCell::own);
+  if (!merged) merged = std::make_shared<RenderCounters>(n, size, plan.mode == PerCell::own, lobes);
   result.counters = merged;
   result.cell_sample = plan.every;
   result.stats_note = plan.note;

@@ -14,10 +14,12 @@ namespace kappa {
 RenderResult render_counting_classes(const Scene& scene, const Accelerator& accel, const RenderSettings& settings,
                                      Film& film, const ProgressCallback& progress) {
   QueryClock::get();  // its one-time set-up (about 25 ms) stays out of the frame's time
-  tbb::enumerable_thread_specific<RenderCounters> per_thread([] { return RenderCounters(); });
+  bool lobes = false;  // counted apart only where a surface is not Lambertian (RenderCounters)
+  for (const Material& m : scene.materials) lobes = lobes || !m.lambertian();
+  tbb::enumerable_thread_specific<RenderCounters> per_thread([&] { return RenderCounters(0, Vec3d{}, false, lobes); });
   RenderResult result = render_tiles(scene, settings, film, progress,
                                      [&] { return ClassQueries(accel, per_thread.local()); });
-  auto merged = std::make_shared<RenderCounters>();
+  auto merged = std::make_shared<RenderCounters>(0, Vec3d{}, false, lobes);
   for (const RenderCounters& c : per_thread) merged->merge(c);
   result.counters = merged;
   return result;

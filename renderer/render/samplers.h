@@ -38,6 +38,10 @@ inline constexpr std::uint32_t light_choice(int bounce) { return 2 + kPerBounce 
 inline constexpr std::uint32_t light_point(int bounce) { return light_choice(bounce) + 1; }  ///< 2D
 inline constexpr std::uint32_t bsdf(int bounce) { return light_choice(bounce) + 3; }         ///< 2D
 inline constexpr std::uint32_t roulette(int bounce) { return light_choice(bounce) + 5; }     ///< 1D
+/// 1D: which of a layered BSDF's lobes samples the bounce. Numbered apart
+/// from the six above, so that the Lambertian frames read exactly the
+/// dimensions they read before materials existed.
+inline constexpr std::uint32_t bsdf_lobe(int bounce) { return 0x40000000u + std::uint32_t(bounce); }
 }  // namespace path_dimensions
 
 /// Uniform in [0, 1) from 32 bits: 24 of them, so 1 is never returned.

@@ -1,4 +1,5 @@
-// Random numbers and the sample warps used by the path tracer.
+// Random numbers and the sample warps used by the path tracer (the warps
+// the BSDFs share with it are in core/warps.h).
 #pragma once
 
 #include <cmath>
@@ -7,6 +8,7 @@
 
 #include "core/hash.h"
 #include "core/vec3.h"
+#include "core/warps.h"
 
 namespace kappa {
 
@@ -47,42 +49,6 @@ class Rng {
   std::uint64_t m_inc = 1;
 };
 
-/// Orthonormal basis around a unit vector n (Duff et al. 2017, branchless).
-struct Frame {
-  Vec3f s, t, n;
-
-  explicit Frame(const Vec3f& normal) : n(normal) {
-    const float sign = std::copysign(1.0f, n.z);
-    const float a = -1.0f / (sign + n.z);
-    const float b = n.x * n.y * a;
-    s = {1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x};
-    t = {b, sign + n.y * n.y * a, -n.y};
-  }
-  Vec3f to_world(const Vec3f& v) const { return s * v.x + t * v.y + n * v.z; }
-};
-
-/// Cosine-weighted direction about +z (Malley's method on a concentric disk).
-inline Vec3f sample_cosine_hemisphere(float u1, float u2) {
-  const float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
-  float r = 0, phi = 0;
-  if (a != 0.0f || b != 0.0f) {
-    constexpr float kPi4 = std::numbers::pi_v<float> / 4.0f;
-    if (std::abs(a) > std::abs(b)) {
-      r = a;
-      phi = kPi4 * (b / a);
-    } else {
-      r = b;
-      phi = 2.0f * kPi4 - kPi4 * (a / b);
-    }
-  }
-  const float x = r * std::cos(phi), y = r * std::sin(phi);
-  return {x, y, std::sqrt(std::max(0.0f, 1.0f - x * x - y * y))};
-}
-
-inline float cosine_hemisphere_pdf(float cos_theta) {
-  return cos_theta > 0.0f ? cos_theta * std::numbers::inv_pi_v<float> : 0.0f;
-}
-
 /// Uniform barycentrics on a triangle (Heitz 2019, low-distortion square to triangle map).
 inline void sample_triangle(float u1, float u2, float& b0, float& b1, float& b2) {
   if (u2 > u1) {
@@ -102,6 +68,5 @@ inline float power_heuristic(float pdf_a, float pdf_b) {
   return a + b > 0.0f ? a / (a + b) : 0.0f;
 }
 
-inline float luminance(const Vec3f& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 }  // namespace kappa

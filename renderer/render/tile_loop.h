@@ -52,7 +52,7 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
   const bool any_aov = !film.albedo.empty() || !film.normal.empty() || !film.depth.empty() || !film.cost_cells.empty();
   // The integrator: only what the scene and the settings need (path_variant.h).
   const PathVariant variant =
-      choose_path_variant(tracer.lighting(), settings.light_sampling, any_aov, settings.specialise);
+      choose_path_variant(tracer.lighting(), settings.light_sampling, any_aov, settings.specialise, tracer.surfaces());
   std::atomic<bool> abandoned{false};
 
   // One pass: samples [first, first + count) of every pixel still sampling,

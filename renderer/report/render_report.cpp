@@ -87,6 +87,28 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
     rays["all"] = ray_class_section(summary(all, all_per_cell_rays, all_visits, theta, all_seconds, uniform),
                                     std::nullopt);
     if (const auto levels = cells->levels(); !levels.empty()) rays["all"]["levels"] = level_sections(all, levels);
+    // Bounce rays by the lobe that sampled them. A scene whose surfaces are
+    // all Lambertian counts no lobes: its bounces are all diffuse.
+    nlohmann::ordered_json by_lobe;
+    for (std::size_t l = 0; l < kBounceLobes; ++l) {
+      ClassTotals t;
+      std::uint64_t per_cell_rays = 0;
+      double seconds = 0;
+      std::vector<std::uint64_t> lobe_visits(per_cell ? theta.size() : 0, 0);
+      const auto add = [&](const CellCounters& c, std::uint64_t ticks) {
+        t += c.totals;
+        per_cell_rays += c.per_cell_queries();
+        seconds += clock.seconds(ticks);
+        if (per_cell && c.per_cell())
+          for (std::size_t i = 0; i < lobe_visits.size(); ++i) lobe_visits[i] += c.visits_at(i);
+      };
+      if (rc.lobes_counted) add(rc.lobes[l], rc.lobe_ticks[l]);
+      else if (l == 0)
+        for (std::size_t k : {kBounce1, kBounce2, kBounce3Plus}) add(rc.classes[k], rc.ticks[k]);
+      by_lobe[kBounceLobeNames[l]] =
+          ray_class_section(summary(t, per_cell_rays, lobe_visits, theta, seconds, uniform), std::nullopt);
+    }
+    rays["bounce_by_lobe"] = std::move(by_lobe);
     add_stats_block(j, per_cell, result.cell_sample, result.stats_note);
   } else if (result.counters) {
     // Another accelerator: per class what applies to any.
@@ -102,6 +124,22 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
       all_seconds += clock.seconds(rc.ticks[k]);
     }
     rays["all"] = section(all, all_seconds);
+    nlohmann::ordered_json by_lobe;
+    for (std::size_t l = 0; l < kBounceLobes; ++l) {
+      ClassTotals t;
+      double seconds = 0;
+      if (rc.lobes_counted) {
+        t = rc.lobes[l].totals;
+        seconds = clock.seconds(rc.lobe_ticks[l]);
+      } else if (l == 0) {
+        for (std::size_t k : {kBounce1, kBounce2, kBounce3Plus}) {
+          t += rc.classes[k].totals;
+          seconds += clock.seconds(rc.ticks[k]);
+        }
+      }
+      by_lobe[kBounceLobeNames[l]] = section(t, seconds);
+    }
+    rays["bounce_by_lobe"] = std::move(by_lobe);
     add_stats_block(j, false, std::nullopt, "");
   }
   j["rays"] = rays;

@@ -25,6 +25,15 @@ const nlohmann::ordered_json& predicted_cells(const nlohmann::ordered_json& c) {
   return c.contains("p_tot_predicted") ? c["p_tot_predicted"] : c["cells_per_ray_predicted"];
 }
 
+/// The bounce rays by lobe, as rows "by LOBE" under the classes, for the
+/// lobes that sampled any ray.
+template <class Row>
+void for_each_lobe(const nlohmann::ordered_json& report, Row&& row_of) {
+  if (!report["rays"].contains("bounce_by_lobe")) return;
+  for (const auto& [lobe, c] : report["rays"]["bounce_by_lobe"].items())
+    if (c["count"].is_number() && c["count"].template get<double>() > 0) row_of("by " + lobe, c);
+}
+
 }  // namespace
 
 std::string stats_table(const nlohmann::ordered_json& report) {
@@ -42,21 +51,29 @@ std::string stats_table(const nlohmann::ordered_json& report) {
   }
   const bool grid_counts = report["rays"].begin()->contains("cells_per_ray");
   if (!grid_counts) {  // another accelerator: what applies to any
-    out += row("%-9s %11s %12s %10s\n", "class", "rays", "hit fraction", "time (s)");
-    for (const auto& [name, c] : report["rays"].items())
+    const auto any_row = [&](const std::string& name, const nlohmann::ordered_json& c) {
       out += row("%-9s %11s %12s %10s\n", name.c_str(), c["count"].dump().c_str(),
                  number(c["hit_fraction"], "%.3f").c_str(), number(c["time_s"], "%.3f").c_str());
+    };
+    out += row("%-9s %11s %12s %10s\n", "class", "rays", "hit fraction", "time (s)");
+    for (const auto& [name, c] : report["rays"].items())
+      if (name != "bounce_by_lobe") any_row(name, c);
+    for_each_lobe(report, [&](const std::string& name, const nlohmann::ordered_json& c) { any_row(name, c); });
     return out;
   }
   static const char* kRow = "%-9s %11s %10s %20s %10s %10s %14s %7s %8s %11s\n";
   out += row(kRow, "class", "rays", "cells/ray", "predicted cells/ray", "tests/ray", "refs/ray", "p_tot (cells)", "r",
              "kappa", "kappa eq 25");
-  for (const auto& [name, c] : report["rays"].items())
+  const auto grid_row = [&](const std::string& name, const nlohmann::ordered_json& c) {
     out += row(kRow, name.c_str(), c["count"].dump().c_str(),
                number(c["cells_per_ray"], "%.2f").c_str(), number(predicted_cells(c), "%.2f").c_str(),
                number(c["tests_per_ray"], "%.2f").c_str(), number(c["refs_per_ray"], "%.2f").c_str(),
                number(c["p_tot"], "%.2f").c_str(), number(c["r"], "%.3f").c_str(), number(c["kappa"], "%.3f").c_str(),
                number(c["kappa_eq25"], "%.3f").c_str());
+  };
+  for (const auto& [name, c] : report["rays"].items())
+    if (name != "bounce_by_lobe") grid_row(name, c);
+  for_each_lobe(report, grid_row);
   return out;
 }
 

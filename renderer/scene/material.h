@@ -1,7 +1,9 @@
 // The material record: what the renderer knows of a surface, whatever format
-// it came from (an MTL today; glTF's metallic-roughness later). The shading
-// point (renderer/render/shading_point.h) hands it to the BSDF; the
-// accelerators never see it.
+// it came from (an MTL today, read as Blender's importer reads it; glTF's
+// metallic-roughness later). Its parameters are those of the one material
+// model, glTF 2.0's metallic-roughness BSDF (renderer/bsdf/principled.h).
+// The shading point (renderer/render/shading_point.h) hands it to the BSDF;
+// the accelerators never see it.
 #pragma once
 
 #include <string>
@@ -10,13 +12,25 @@
 
 namespace kappa {
 
-/// Lambertian reflector that may also emit (one-sided, towards its normal).
 struct Material {
   std::string name;
-  Vec3f albedo{0.5f, 0.5f, 0.5f};  ///< Kd, in [0, 1]
-  Vec3f emission{0, 0, 0};         ///< Ke, radiance (W sr^-1 m^-2, scene units)
+  Vec3f albedo{0.5f, 0.5f, 0.5f};  ///< base colour (Kd), in [0, 1]
+  Vec3f emission{0, 0, 0};         ///< Ke, radiance (W sr^-1 m^-2, scene units), one-sided
+  float roughness = 1;             ///< perceptual roughness in [0, 1]; GGX alpha = roughness^2
+  float metallic = 0;              ///< in [0, 1]: mix(dielectric, metal, metallic)
+  /// In [0, 1]: the opaque dielectric's Fresnel is scaled by 2 * specular
+  /// (0.5 the IOR's own reflectance, 0 none: a Lambertian surface).
+  float specular = 0;
+  float ior = 1.5f;                    ///< index of refraction inside (outside 1), > 0
+  float transmission = 0;              ///< in [0, 1]: the dielectric's share that is glass
+  Vec3f transmission_tint{1, 1, 1};    ///< multiplies refracted light (MTL Tf), in [0, 1]
+  /// In [0, 1] (MTL d, 1 - Tr): read and kept; cut-outs are the textures issue's.
+  float opacity = 1;
 
   bool emissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
+  /// Exactly today's Lambertian reflector (albedo / pi): the all-Lambertian
+  /// frame (path_variant.h) renders it with its own code.
+  bool lambertian() const { return specular == 0 && metallic == 0 && transmission == 0; }
 };
 
 }  // namespace kappa

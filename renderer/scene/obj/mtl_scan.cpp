@@ -21,7 +21,7 @@ std::string scan_mtl(const std::filesystem::path& file, const std::string& text)
     if (!body.empty() && body.back() == '\r') body.remove_suffix(1);
     const auto tokens = split_ws(body);
     const bool colour = !tokens.empty() && (tokens[0] == "Ka" || tokens[0] == "Kd" || tokens[0] == "Ks" ||
-                                            tokens[0] == "Ke" || tokens[0] == "Tf");
+                                            tokens[0] == "Ke" || tokens[0] == "Tf" || tokens[0] == "Kt");
     if (!colour) {
       out.append(line).push_back('\n');
       continue;

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <streambuf>
 
+#include "renderer/scene/obj/mtl_material.h"
 #include "renderer/scene/obj/mtl_scan.h"
 #include "renderer/scene/obj/obj_limits.h"
 #include "renderer/scene/obj/obj_scan.h"
@@ -117,6 +118,9 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
   // Material libraries pass the same input check as every file, and
   // tinyobjloader gets their checked text, never a path to open itself.
   std::map<std::string, std::string> libraries;
+  // Each material's statements with their lines, by name: the first
+  // definition in the libraries' order (what tinyobjloader also keeps).
+  std::map<std::string, std::pair<MtlRecord, std::filesystem::path>> records;
   for (const auto& lib : scan.mtllibs) {
     std::error_code ec;
     if (!std::filesystem::exists(dir / lib, ec)) {
@@ -125,6 +129,10 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
     }
     libraries[lib] = scan_mtl(dir / lib, read_input_file(dir / lib, "a material library (MTL)"));
     scene.inputs.push_back(dir / lib);
+    for (MtlRecord& r : read_mtl_records(dir / lib, libraries[lib], warnings)) {
+      const std::string name = r.name;
+      records.emplace(name, std::pair{std::move(r), dir / lib});
+    }
   }
   for (const ObjPolygon& poly : scan.polygons) {
     std::vector<std::size_t> distinct = poly.vertices;
@@ -159,11 +167,19 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
   // Materials: referenced by index, offset by what earlier meshes added.
   const auto base = static_cast<std::uint32_t>(scene.materials.size());
   std::set<std::string> defined;
+  std::map<std::filesystem::path, std::set<std::string>> warned;  // per MTL file, the kinds warned about
   for (const tinyobj::material_t& m : materials) {
+    // tinyobjloader gives the names and their order (the faces' material
+    // ids); the mapping reads the statements themselves (mtl_material.h).
+    const auto r = records.find(m.name);
     Material mat;
-    mat.name = m.name;
-    mat.albedo = checked_colour(m.diffuse, m.name, "Kd", 1.0f, obj, warnings);
-    mat.emission = checked_colour(m.emission, m.name, "Ke", 1e30f, obj, warnings);
+    if (r != records.end()) {
+      mat = material_from_mtl(r->second.first, r->second.second, warnings, warned[r->second.second]);
+    } else {
+      mat.name = m.name;
+      mat.albedo = checked_colour(m.diffuse, m.name, "Kd", 1.0f, obj, warnings);
+      mat.emission = checked_colour(m.emission, m.name, "Ke", 1e30f, obj, warnings);
+    }
     scene.materials.push_back(mat);
     defined.insert(m.name);
   }

@@ -134,5 +134,67 @@ TEST(Bias, EverySamplerAgreesWithIndependentSampling) {
   }
 }
 
+/// The room with the materials' lobes: a glossy floor, a rough metal block,
+/// a rough and a smooth glass block, under the small light and the sky.
+Scene material_room() {
+  Scene s = small_light_room(true, true);
+  Material glossy{"glossy", {0.7f, 0.7f, 0.7f}, {0, 0, 0}};
+  glossy.specular = 0.5f;
+  glossy.roughness = 0.3f;
+  Material metal{"metal", {0.9f, 0.6f, 0.5f}, {0, 0, 0}};
+  metal.metallic = 1;
+  metal.roughness = 0.4f;
+  Material rough_glass{"rough glass", {1, 1, 1}, {0, 0, 0}};
+  rough_glass.transmission = 1;
+  rough_glass.roughness = 0.3f;
+  rough_glass.ior = 1.5f;
+  Material smooth_glass = rough_glass;
+  smooth_glass.roughness = 0;
+  const auto first = std::uint32_t(s.materials.size());
+  s.materials.insert(s.materials.end(), {glossy, metal, rough_glass, smooth_glass});
+  for (std::uint32_t& m : s.material_of)
+    if (m == 0) m = first;  // the floor and the wall: glossy
+    else if (m == 2) m = first + 1;  // the block: metal
+  test::add_box(s, {-1.6f, 0, -1.0f}, {-0.9f, 0.6f, -0.3f}, false, first + 2);
+  test::add_box(s, {0.9f, 0, -1.0f}, {1.6f, 0.6f, -0.3f}, false, first + 3);
+  return s;
+}
+
+// The three strategies agree through glossy, metal and glass lobes too (MIS
+// weights of a mixture of lobes, delta lobes taking no light sample).
+TEST(Bias, MisNeeAndBsdfAgreeThroughMaterials) {
+  const Scene scene = material_room();
+  RenderSettings settings;
+  settings.spp = 64;
+  settings.max_depth = 3;
+  const Film mis = render_with(scene, settings, 1);
+  settings.light_sampling = LightSampling::nee;
+  settings.spp = 256;  // light sampling alone is noisy on the glossy floor's reflection of the light
+  const Film nee = render_with(scene, settings, 2);
+  settings.light_sampling = LightSampling::bsdf;
+  settings.spp = 1024;
+  const Film bsdf = render_with(scene, settings, 3);
+  expect_agree(mis, nee, "materials, mis against nee", 64);
+  expect_agree(mis, bsdf, "materials, mis against bsdf", 64);
+}
+
+// Russian roulette through refraction (its throughput with the 1/eta^2 undone)
+// and stratified lobe choices keep the mean.
+TEST(Bias, RouletteAndSamplersAgreeThroughMaterials) {
+  const Scene scene = material_room();
+  RenderSettings settings;
+  settings.spp = 128;
+  settings.max_depth = 12;  // both truncated alike
+  settings.sampler = SamplerKind::independent;
+  settings.rr_depth = 1;
+  const Film with_rr = render_with(scene, settings, 1);
+  settings.rr_depth = -1;
+  const Film without = render_with(scene, settings, 2);
+  expect_agree(with_rr, without, "materials, roulette from bounce 1 against none", 128);
+  settings.rr_depth = 1;
+  settings.sampler = SamplerKind::sobol;
+  expect_agree(with_rr, render_with(scene, settings, 3), "materials, independent against sobol", 128);
+}
+
 }  // namespace
 }  // namespace kappa
