@@ -9,6 +9,10 @@ docs/scene-format.md).
 """
 import math
 import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from icosphere import icosphere  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 BOX = os.path.join(HERE, "..", "cornell-box", "cornell_box.obj")
@@ -62,33 +66,6 @@ Ks 1 1 1
 Ns 400
 illum 3
 """
-
-
-def icosphere(level):
-    t = (1 + 5 ** 0.5) / 2
-    v = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t), (0, -1, -t), (0, 1, -t),
-         (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
-    v = [tuple(c / math.sqrt(sum(x * x for x in p)) for c in p) for p in v]
-    f = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2), (10, 7, 6),
-         (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10),
-         (8, 6, 7), (9, 8, 1)]
-    for _ in range(level):
-        cache, nf = {}, []
-
-        def mid(a, b):
-            key = (min(a, b), max(a, b))
-            if key not in cache:
-                p = [(v[a][i] + v[b][i]) / 2 for i in range(3)]
-                n = math.sqrt(sum(x * x for x in p))
-                v.append(tuple(x / n for x in p))
-                cache[key] = len(v) - 1
-            return cache[key]
-
-        for a, b, c in f:
-            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
-            nf += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
-        f = nf
-    return v, f
 
 
 def box(center, size, angle_deg):

@@ -176,13 +176,14 @@ class PathTracer {
     return dot(ns, wo) > 0.0f ? ns : n;
   }
 
-  /// A light sample's direction and what it brings before the surface's
-  /// response: emitted radiance over the light sampling's pdf, and that pdf
-  /// (solid angle). None when the sample brings nothing or is occluded.
+  /// A light sample: its direction, the radiance it brings, the light
+  /// sampling's pdf of the direction (solid angle) and its cosine about the
+  /// oriented geometric normal. None when it brings nothing or is occluded.
   struct LightSample {
     Vec3f wi;
-    Vec3f Le_over_pdf;
+    Vec3f Le;
     float pdf = 0;
+    float cos = 0;
   };
 
   /// One light sample at a vertex with oriented geometric normal n, for a
@@ -190,6 +191,9 @@ class PathTracer {
   template <PathVariant V, class Sampler, class Queries>
   std::optional<LightSample> sample_light(const SurfacePoint& sp, const Vec3f& n, bool two_sided, Sampler& sampler,
                                           int depth, Queries& q) const {
+    // The light choice's number is drawn even when there is one kind of
+    // light, so that every variant reads the same numbers (an independent
+    // sampler's stream is in order) and renders the general one's image.
     const double choice = sampler.get1D_double(path_dimensions::light_choice(depth));
     const auto [u1, u2] = sampler.get2D(path_dimensions::light_point(depth));
     std::size_t light = m_lights.environment_index();
@@ -206,7 +210,7 @@ class PathTracer {
         const float light_pdf = m_lights.pmf_environment() * dir_pdf;
         if (!(light_pdf > 0.0f)) return std::nullopt;
         if (q.shadow(Ray{offset_ray_origin(sp, wi), wi})) return std::nullopt;
-        return LightSample{wi, m_scene.environment / light_pdf, light_pdf};
+        return LightSample{wi, m_scene.environment, light_pdf, local.z};
       }
     }
     if constexpr (V.triangle_lights) {
@@ -231,8 +235,7 @@ class PathTracer {
       const float len = length(d);
       if (!(len > 0.0f)) return std::nullopt;
       if (q.shadow(Ray{from, d / len, 0.0f, len * (1.0f - kShadowEpsilon)})) return std::nullopt;
-      const Vec3f Le = m_scene.materials[m_scene.material_of[id]].emission;
-      return LightSample{wi, Le / light_pdf, light_pdf};
+      return LightSample{wi, m_scene.materials[m_scene.material_of[id]].emission, light_pdf, cos_s};
     }
     return std::nullopt;
   }
@@ -257,7 +260,7 @@ class PathTracer {
           const Vec3f f_cos = f.eval_cos(wo, ls->wi);
           if (!(f_cos == Vec3f{0, 0, 0})) {
             const float weight = kMis ? power_heuristic(ls->pdf, f.pdf(wo, ls->wi)) : 1.0f;
-            L += beta * f_cos * ls->Le_over_pdf * weight;
+            L += beta * f_cos * ls->Le * (weight / ls->pdf);
           }
         }
       }
@@ -291,65 +294,17 @@ class PathTracer {
   Vec3f direct_light(const SurfacePoint& sp, const Vec3f& n, const Vec3f& ns, const Vec3f& f, Sampler& sampler,
                      int depth, Queries& q) const {
     constexpr bool kMis = V.strategy == LightSampling::mis;
+    const auto ls = sample_light<V>(sp, n, false, sampler, depth, q);
+    if (!ls) return {};
+    float cos_s = ls->cos;
     if constexpr (V.surfaces == Surfaces::lambertian_smooth) {
-      const auto ls = sample_light<V>(sp, n, false, sampler, depth, q);
-      if (!ls) return {};
-      const float cos_s = dot(ns, ls->wi);
+      cos_s = dot(ns, ls->wi);
       if (!(cos_s > 0.0f)) return {};
-      const float weight = kMis ? power_heuristic(ls->pdf, cosine_hemisphere_pdf(cos_s)) : 1.0f;
-      return f * ls->Le_over_pdf * (cos_s * weight);
+    } else {
+      (void)ns;
     }
-    (void)ns;
-    // The light choice's number is drawn even when there is one kind of
-    // light, so that every variant reads the same numbers (an independent
-    // sampler's stream is in order) and renders the general one's image.
-    const double choice = sampler.get1D_double(path_dimensions::light_choice(depth));
-    const auto [u1, u2] = sampler.get2D(path_dimensions::light_point(depth));
-    std::size_t light = m_lights.environment_index();
-    if constexpr (V.triangle_lights) light = m_lights.choose(choice);
-    else (void)choice;
-    if constexpr (V.environment) {
-      if (light == m_lights.environment_index()) {
-        // Cosine-weighted about the oriented normal: directions below the
-        // surface would contribute nothing.
-        const Vec3f local = sample_cosine_hemisphere(u1, u2);
-        const float dir_pdf = cosine_hemisphere_pdf(local.z);
-        if (!(dir_pdf > 0.0f)) return {};
-        const Vec3f wi = Frame(n).to_world(local);
-        const float light_pdf = m_lights.pmf_environment() * dir_pdf;
-        if (!(light_pdf > 0.0f)) return {};
-        if (q.shadow(Ray{offset_ray_origin(sp, wi), wi})) return {};
-        const float weight = kMis ? power_heuristic(light_pdf, dir_pdf) : 1.0f;
-        return f * m_scene.environment * (local.z * weight / light_pdf);
-      }
-    }
-    if constexpr (V.triangle_lights) {
-      const TriangleId id = m_lights.triangle(light);
-      const Triangle& tri = m_scene.triangles[id];
-      float b0, b1, b2;
-      sample_triangle(u1, u2, b0, b1, b2);
-      const SurfacePoint lp = surface_point(tri, b0, b1, b2);
-      const Vec3f to_light = lp.p - sp.p;
-      const float dist2 = dot(to_light, to_light);
-      if (!(dist2 > 0.0f)) return {};
-      const Vec3f wi = to_light / std::sqrt(dist2);
-      const float cos_s = dot(n, wi);
-      const float cos_l = -dot(lp.n, wi);
-      if (cos_s <= 0.0f || cos_l <= 0.0f) return {};
-      const float light_pdf = m_lights.pmf(light) * dist2 / (cos_l * m_lights.area(light));
-      if (!(light_pdf > 0.0f) || !std::isfinite(light_pdf)) return {};
-
-      const Vec3f from = offset_ray_origin(sp, wi);
-      const Vec3f to = offset_ray_origin(lp, -wi);
-      const Vec3f d = to - from;
-      const float len = length(d);
-      if (!(len > 0.0f)) return {};
-      if (q.shadow(Ray{from, d / len, 0.0f, len * (1.0f - kShadowEpsilon)})) return {};
-      const Vec3f Le = m_scene.materials[m_scene.material_of[id]].emission;
-      const float weight = kMis ? power_heuristic(light_pdf, cosine_hemisphere_pdf(cos_s)) : 1.0f;
-      return f * Le * (cos_s * weight / light_pdf);
-    }
-    return {};
+    const float weight = kMis ? power_heuristic(ls->pdf, cosine_hemisphere_pdf(cos_s)) : 1.0f;
+    return f * ls->Le * (cos_s * weight / ls->pdf);
   }
 
   const Scene& m_scene;

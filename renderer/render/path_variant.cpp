@@ -34,9 +34,10 @@ PathVariant choose_path_variant(SceneLighting scene, LightSampling strategy, boo
                : surfaces.vertex_normals ? Surfaces::lambertian_smooth
                                          : Surfaces::lambertian;
   if (v.surfaces != Surfaces::lambertian) {
-    // Compiled with every light on only (path_variant.h).
+    // Compiled as the general variant only (path_variant.h).
     v.triangle_lights = v.strategy != LightSampling::bsdf;
     v.environment = true;
+    v.aovs = true;
   }
   return v;
 }

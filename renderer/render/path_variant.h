@@ -11,8 +11,9 @@
 // materials are all Lambertian and that gives no vertex normals runs the
 // Lambertian code of before materials existed (bitwise its images); vertex
 // normals add the shading normal to it; any other material runs the general
-// BSDF (renderer/bsdf/). The last two are compiled with every light on (the
-// general variant of each strategy), which keeps the build's size in check.
+// BSDF (renderer/bsdf/). The last two are compiled as the general variant of
+// each strategy only (every light on, the first hit recorded), which keeps
+// the build's size in check.
 #pragma once
 
 #include <array>
@@ -56,20 +57,21 @@ struct PathVariant {
 /// Every variant the frames are compiled for: with AOVs and without, the
 /// strategies with lights (mis and nee: triangles, environment or both),
 /// bsdf (with and without the environment), on Lambertian surfaces; and each
-/// strategy's general variant on the other two kinds of surfaces.
-inline constexpr std::array<PathVariant, 28> kPathVariants = [] {
-  std::array<PathVariant, 28> v{};
+/// strategy's general variant (every light on, the first hit recorded) on
+/// the other two kinds of surfaces.
+inline constexpr std::array<PathVariant, 22> kPathVariants = [] {
+  std::array<PathVariant, 22> v{};
   std::size_t i = 0;
   for (bool aovs : {false, true}) {
     for (LightSampling s : {LightSampling::mis, LightSampling::nee})
       for (auto [t, e] : {std::pair{true, false}, std::pair{false, true}, std::pair{true, true}}) v[i++] = {s, t, e, aovs};
     v[i++] = {LightSampling::bsdf, false, false, aovs};
     v[i++] = {LightSampling::bsdf, false, true, aovs};
-    for (Surfaces k : {Surfaces::lambertian_smooth, Surfaces::general}) {
-      v[i++] = {LightSampling::mis, true, true, aovs, k};
-      v[i++] = {LightSampling::nee, true, true, aovs, k};
-      v[i++] = {LightSampling::bsdf, false, true, aovs, k};
-    }
+  }
+  for (Surfaces k : {Surfaces::lambertian_smooth, Surfaces::general}) {
+    v[i++] = {LightSampling::mis, true, true, true, k};
+    v[i++] = {LightSampling::nee, true, true, true, k};
+    v[i++] = {LightSampling::bsdf, false, true, true, k};
   }
   return v;
 }();

@@ -217,6 +217,15 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
   if (keep_normals) scene.normals.resize(scene.triangles.size());
   if (keep_uvs) scene.uvs.resize(scene.triangles.size());
   std::size_t zero_area = 0, too_small = 0, before = scene.triangles.size();
+  // Triangles of a smoothing group (`s N`, N > 0) that give no normals of
+  // their own: smooth-shaded with the normals of their group's faces
+  // averaged at each shared vertex (by area), as Blender shades them.
+  struct Smoothed {
+    std::size_t triangle;
+    int vertex[3];
+    unsigned group;
+  };
+  std::vector<Smoothed> smoothed;
   for (const tinyobj::shape_t& shape : shapes) {
     const auto& idx = shape.mesh.indices;
     std::size_t offset = 0;
@@ -241,13 +250,16 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
       }
       const int mat = face < shape.mesh.material_ids.size() ? shape.mesh.material_ids[face] : -1;
       scene.triangles.push_back(tri);
+      bool given = false;
       if (keep_normals) {
         TriangleNormals n;
-        if (!(normal(idx[f].normal_index, n.n[0]) && normal(idx[f + 1].normal_index, n.n[1]) &&
-              normal(idx[f + 2].normal_index, n.n[2])))
-          n = TriangleNormals{};  // all three, or none
+        given = normal(idx[f].normal_index, n.n[0]) && normal(idx[f + 1].normal_index, n.n[1]) &&
+                normal(idx[f + 2].normal_index, n.n[2]);
+        if (!given) n = TriangleNormals{};  // all three, or none
         scene.normals.push_back(n);
       }
+      const unsigned group = face < shape.mesh.smoothing_group_ids.size() ? shape.mesh.smoothing_group_ids[face] : 0;
+      if (!given && group != 0) smoothed.push_back({scene.triangles.size() - 1, {a, b, c}, group});
       if (keep_uvs) {
         TriangleUVs t;
         if (!(uv(idx[f].texcoord_index, t.uv[0]) && uv(idx[f + 1].texcoord_index, t.uv[1]) &&
@@ -257,6 +269,26 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
       }
       scene.material_of.push_back(mat >= 0 && std::size_t(mat) < materials.size() ? base + std::uint32_t(mat)
                                                                                    : default_material(scene));
+    }
+  }
+  if (!smoothed.empty()) {
+    std::map<std::pair<int, unsigned>, Vec3d> sums;  // (vertex, group) -> area-weighted normal
+    for (const Smoothed& t : smoothed) {
+      const Triangle& tri = scene.triangles[t.triangle];
+      const Vec3d n = cross(Vec3d(tri.v1) - Vec3d(tri.v0), Vec3d(tri.v2) - Vec3d(tri.v0));
+      for (int v : t.vertex) sums[{v, t.group}] += n;
+    }
+    scene.normals.resize(scene.triangles.size());
+    for (const Smoothed& t : smoothed) {
+      TriangleNormals n;
+      bool ok = true;
+      for (int k = 0; k < 3; ++k) {
+        const Vec3d& sum = sums[{t.vertex[k], t.group}];
+        const double len = length(sum);
+        ok = ok && len > 0 && std::isfinite(len);
+        if (ok) n.n[k] = Vec3f(sum / len);
+      }
+      scene.normals[t.triangle] = ok ? n : TriangleNormals{};
     }
   }
   // A mesh after one with normals or UVs, without its own, gets "none".

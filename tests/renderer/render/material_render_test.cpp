@@ -98,6 +98,30 @@ TEST(MaterialRender, AMirrorFacingAUniformEmitterReturnsFresnelTimesLe) {
   }
 }
 
+/// The closed furnace of albedo rho emitting Le everywhere, seen from inside;
+/// with `general`, an unused glossy material makes the frame run the general
+/// BSDF (every material through renderer/bsdf/).
+Scene furnace_box(float rho, float Le, bool general) {
+  Scene s;
+  s.materials.push_back(Material{"furnace", {rho, rho, rho}, {Le, Le, Le}});
+  if (general) {
+    Material glossy;
+    glossy.specular = 0.5f;
+    s.materials.push_back(glossy);
+  }
+  test::add_box(s, {-1, -1, -1}, {1, 1, 1}, /*inward=*/true, 0);
+  s.camera = CameraSpec{{0.1f, -0.05f, 0.02f}, {0.3f, 0.2f, 1.0f}, {0, 1, 0}, 90.0f};
+  s.width = s.height = 48;
+  return s;
+}
+
+Film render_furnace(const Scene& s) {
+  RenderSettings settings;
+  settings.spp = test::scaled(64, 8);
+  settings.max_depth = 64;
+  return test::render_scene(s, settings, "grid");
+}
+
 /// The closed furnace of rho 0.5 emitting Le everywhere reads Le / (1 - rho).
 /// Shading normals tilted at random (up to about 20 degrees from each face's)
 /// may lose energy (directions below the surface are black) but never add
@@ -106,14 +130,7 @@ TEST(MaterialRender, ShadingNormalsAddNoEnergy) {
   const float rho = 0.5f, Le = 0.5f;
   const double expected = Le / (1.0 - rho);
   for (bool general : {false, true}) {
-    Scene s;
-    s.materials.push_back(Material{"furnace", {rho, rho, rho}, {Le, Le, Le}});
-    test::add_box(s, {-1, -1, -1}, {1, 1, 1}, /*inward=*/true, 0);
-    if (general) {  // an unused glossy material makes the frame run the general BSDF
-      Material glossy;
-      glossy.specular = 0.5f;
-      s.materials.push_back(glossy);
-    }
+    Scene s = furnace_box(rho, Le, general);
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(-0.25f, 0.25f);
     for (const Triangle& t : s.triangles) {
@@ -122,12 +139,7 @@ TEST(MaterialRender, ShadingNormalsAddNoEnergy) {
       for (Vec3f& v : tn.n) v = normalize(n + Vec3f{u(rng), u(rng), u(rng)});
       s.normals.push_back(tn);
     }
-    s.camera = CameraSpec{{0.1f, -0.05f, 0.02f}, {0.3f, 0.2f, 1.0f}, {0, 1, 0}, 90.0f};
-    s.width = s.height = 48;
-    RenderSettings settings;
-    settings.spp = test::scaled(64, 8);
-    settings.max_depth = 64;
-    const Film film = test::render_scene(s, settings, "grid");
+    const Film film = render_furnace(s);
     for (int c = 0; c < 3; ++c) {
       const auto st = test::channel_stats(film, c);
       std::printf("%s furnace with tilted shading normals, channel %d: %.5f (no tilt: %.5f)\n",
@@ -142,18 +154,7 @@ TEST(MaterialRender, ShadingNormalsAddNoEnergy) {
 /// estimator: the closed furnace reads Le / (1 - rho).
 TEST(MaterialRender, TheGeneralBsdfWithLambertianParametersConvergesInTheFurnace) {
   const float rho = 0.5f, Le = 0.5f;
-  Scene s;
-  s.materials.push_back(Material{"furnace", {rho, rho, rho}, {Le, Le, Le}});
-  Material glossy;
-  glossy.specular = 0.5f;
-  s.materials.push_back(glossy);
-  test::add_box(s, {-1, -1, -1}, {1, 1, 1}, true, 0);
-  s.camera = CameraSpec{{0.1f, -0.05f, 0.02f}, {0.3f, 0.2f, 1.0f}, {0, 1, 0}, 90.0f};
-  s.width = s.height = 48;
-  RenderSettings settings;
-  settings.spp = test::scaled(64, 8);
-  settings.max_depth = 64;
-  const Film film = test::render_scene(s, settings, "grid");
+  const Film film = render_furnace(furnace_box(rho, Le, true));
   for (int c = 0; c < 3; ++c) {
     const auto st = test::channel_stats(film, c);
     EXPECT_NEAR(st.mean, Le / (1 - rho), 4 * st.standard_error + 1e-6) << c;

@@ -27,6 +27,12 @@ Material material(const std::string& mtl) {
   return material(mtl, w);
 }
 
+Warnings warnings_of(const std::string& mtl) {
+  Warnings w;
+  material(mtl, w);
+  return w;
+}
+
 std::string refusal(const std::string& mtl) {
   try {
     Warnings w;
@@ -61,9 +67,8 @@ TEST(MtlMaterial, SpecularIsTheMeanOfKsOrTheHighlightDefault) {
   EXPECT_FLOAT_EQ(material("newmtl a\nillum 2\n").specular, 1.0f);
   EXPECT_FLOAT_EQ(material("newmtl a\nillum 1\n").specular, 0.0f);
   EXPECT_FLOAT_EQ(material("newmtl a\n").specular, 0.0f);
-  Warnings w;
-  material("newmtl a\nKs 0.2 0.4 0.6\n", w);
-  EXPECT_TRUE(any_contains(w, "m.mtl:2: Ks 0.2 0.4 0.6: a coloured specular is read as its mean"));
+  EXPECT_TRUE(any_contains(warnings_of("newmtl a\nKs 0.2 0.4 0.6\n"),
+                           "m.mtl:2: Ks 0.2 0.4 0.6: a coloured specular is read as its mean"));
 }
 
 TEST(MtlMaterial, NsMapsToRoughnessAsBlenderDoes) {
@@ -136,9 +141,7 @@ TEST(MtlMaterial, TfWithoutRefractionIsWarned) {
   Warnings w;
   EXPECT_EQ(material("newmtl a\nTf 1 1 1\nillum 2\n", w).transmission, 0.0f);
   EXPECT_TRUE(any_contains(w, "m.mtl:2: Tf ignored (only illum 4, 6, 7 and 9 refract)"));
-  Warnings quiet;
-  material("newmtl a\nTf 0 0 0\n", quiet);
-  EXPECT_TRUE(quiet.empty());
+  EXPECT_TRUE(warnings_of("newmtl a\nTf 0 0 0\n").empty());
 }
 
 TEST(MtlMaterial, OpacityIsDOrOneMinusTrKeptAndWarned) {
@@ -170,9 +173,7 @@ TEST(MtlMaterial, AmbientIsIgnoredWithAWarningUnlessMetallic) {
   Warnings w;
   EXPECT_FLOAT_EQ(material("newmtl a\nKa 0.2 0.2 0.2\n", w).metallic, 0.0f);
   EXPECT_TRUE(any_contains(w, "m.mtl:2: Ka ignored"));
-  Warnings quiet;
-  material("newmtl a\nKa 0 0 0\n", quiet);
-  EXPECT_TRUE(quiet.empty());
+  EXPECT_TRUE(warnings_of("newmtl a\nKa 0 0 0\n").empty());
 }
 
 TEST(MtlMaterial, EveryKeywordNotModelledIsWarnedOncePerFileWithItsLine) {

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/error.h"
 #include "test_util.h"
 
@@ -41,6 +43,32 @@ TEST(ObjLoader, QuadsAreTriangulatedAndMaterialsRead) {
   // Counter-clockwise winding is kept: the normal is +z.
   const Triangle& t = s.triangles[0];
   EXPECT_GT(cross(t.v1 - t.v0, t.v2 - t.v0).z, 0.0f);
+}
+
+// Faces of a smoothing group without normals of their own are smooth-shaded
+// (their group's face normals averaged at shared vertices, by area); `s off`
+// faces stay flat, and faces with vn keep theirs.
+TEST(ObjLoader, SmoothingGroupsWithoutNormalsAreSmoothShaded) {
+  Warnings w;
+  // Two triangles folded 90 degrees along the edge 1-2, in one group, then
+  // the same two with `s off`.
+  const std::string fold = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
+  const Scene smooth = load(fold + "s 1\nf 1 2 3\nf 2 1 4\n", w);
+  ASSERT_EQ(smooth.normals.size(), 2u);
+  ASSERT_TRUE(smooth.normals[0].given());
+  // Vertex 1 (index 0 of the first triangle) is shared: the mean of +z and +y.
+  const Vec3f shared = smooth.normals[0].n[0];
+  EXPECT_NEAR(shared.x, 0.0f, 1e-6f);
+  EXPECT_NEAR(shared.y, std::sqrt(0.5f), 1e-6f);
+  EXPECT_NEAR(shared.z, std::sqrt(0.5f), 1e-6f);
+  // Vertex 3 belongs to the first triangle alone: its own normal, +z.
+  EXPECT_NEAR(smooth.normals[0].n[2].z, 1.0f, 1e-6f);
+  const Scene flat = load(fold + "s off\nf 1 2 3\nf 2 1 4\n", w);
+  EXPECT_TRUE(flat.normals.empty());
+  const Scene given = load(fold + "vn 1 0 0\ns 1\nf 1//1 2//1 3//1\nf 2 1 4\n", w);
+  ASSERT_EQ(given.normals.size(), 2u);
+  EXPECT_EQ(given.normals[0].n[0], (Vec3f{1, 0, 0}));
+  EXPECT_NEAR(given.normals[1].n[2].y, 1.0f, 1e-6f);  // from the faces without vn alone
 }
 
 TEST(ObjLoader, RelativeIndicesAndSlashForms) {
