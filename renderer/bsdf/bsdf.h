@@ -36,7 +36,7 @@ class Bsdf {
     // Vertex normals say which side is outside; without them ns == ng.
     if (dot(ns, ng) < 0.0f) ng = -ng;
     // An opaque surface is two-sided: it reflects on the side it is seen from.
-    if (m.transmission == 0.0f && dot(ng, wo) < 0.0f) {
+    if (!m.refracts() && dot(ng, wo) < 0.0f) {
       ng = -ng;
       ns = -ns;
     }

@@ -256,7 +256,7 @@ class PathTracer {
       // Delta lobes alone: no light sample can reach them (the numbers of
       // its dimensions are left unread).
       if (!f.delta_only() && !m_lights.empty()) {
-        if (const auto ls = sample_light<V>(sp, n, mat.transmission > 0.0f, sampler, depth, q)) {
+        if (const auto ls = sample_light<V>(sp, n, mat.refracts(), sampler, depth, q)) {
           const Vec3f f_cos = f.eval_cos(wo, ls->wi);
           if (!(f_cos == Vec3f{0, 0, 0})) {
             const float weight = kMis ? power_heuristic(ls->pdf, f.pdf(wo, ls->wi)) : 1.0f;

@@ -31,6 +31,9 @@ struct Material {
   /// Exactly today's Lambertian reflector (albedo / pi): the all-Lambertian
   /// frame (path_variant.h) renders it with its own code.
   bool lambertian() const { return specular == 0 && metallic == 0 && transmission == 0; }
+  /// Some light passes through (the glass part has weight): the surface has
+  /// an inside and an outside; otherwise it reflects alike on both sides.
+  bool refracts() const { return transmission > 0 && metallic < 1; }
 };
 
 }  // namespace kappa

@@ -62,15 +62,25 @@ TEST(MaterialRender, SmoothGlassInAUniformEnvironmentRendersTheEnvironment) {
 TEST(MaterialRender, AMirrorFacingAUniformEmitterReturnsFresnelTimesLe) {
   const Vec3f f0{0.2f, 0.5f, 0.8f};
   const Vec3f Le{2.0f, 1.0f, 0.5f};
-  for (bool quad : {false, true}) {
+  for (bool quad : {false, true})
+  for (bool from_behind : {false, true}) {
     Scene s;
     Material mirror;
     mirror.name = "mirror";
     mirror.albedo = f0;
     mirror.metallic = 1;
     mirror.roughness = 0;
+    // A metal reflects on both sides, whatever else it would be (its glass
+    // part has no weight): seen from behind its winding, it is the same mirror.
+    if (from_behind) mirror.transmission = 1;
     s.materials.push_back(mirror);
-    test::add_box(s, {-50, -1, -50}, {50, 0, 50}, false, 0);
+    if (from_behind) {
+      s.triangles.push_back({{-50, 0, -50}, {50, 0, -50}, {50, 0, 50}});  // facing down, -y
+      s.triangles.push_back({{-50, 0, -50}, {50, 0, 50}, {-50, 0, 50}});
+      s.material_of.insert(s.material_of.end(), {0, 0});
+    } else {
+      test::add_box(s, {-50, -1, -50}, {50, 0, 50}, false, 0);
+    }
     if (quad) {
       s.materials.push_back(Material{"lamp", {0, 0, 0}, Le});
       // Square to the mirrored rays (0, 0.5, 0.866), 1000 away, facing back at them.
@@ -94,7 +104,7 @@ TEST(MaterialRender, AMirrorFacingAUniformEmitterReturnsFresnelTimesLe) {
     for (std::size_t i = 0; i < film.pixels(); ++i)
       for (int c = 0; c < 3; ++c)
         ASSERT_NEAR(film.rgb[3 * i + std::size_t(c)], F[c] * Le[c], 2e-3 * F[c] * Le[c])
-            << (quad ? "quad" : "environment") << " pixel " << i << " channel " << c;
+            << (quad ? "quad" : "environment") << (from_behind ? " from behind" : "") << " pixel " << i << " channel " << c;
   }
 }
 
