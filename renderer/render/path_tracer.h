@@ -42,7 +42,7 @@ class PathTracer {
   SceneSurfaces surfaces() const {
     SceneSurfaces s;
     for (const TriangleNormals& n : m_scene.normals) s.vertex_normals = s.vertex_normals || n.given();
-    for (const Material& m : m_scene.materials) s.non_lambertian = s.non_lambertian || !m.lambertian();
+    s.non_lambertian = m_scene.has_materials();
     return s;
   }
 

@@ -28,8 +28,7 @@ RenderResult render_counting_with(const Scene& scene, const Walker& grid, const 
   const Vec3d size = cells.uniform_cell_size().value_or(Vec3d{});
   const std::uint64_t asked = settings.cell_sample > 0 ? settings.cell_sample : auto_cell_sample(n);
   // Lobes are counted apart only where a surface is not Lambertian (RenderCounters).
-  bool lobes = false;
-  for (const Material& m : scene.materials) lobes = lobes || !m.lambertian();
+  const bool lobes = scene.has_materials();
   const PerCellPlan plan = plan_per_cell(n, lobes ? kCountedSets : kRenderClasses, std::uint64_t(active_threads()),
                                          asked, grid.bytes(), settings.stats_max_bytes);
   const CellSampling sampling{plan.every, settings.seed};

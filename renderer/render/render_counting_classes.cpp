@@ -14,8 +14,7 @@ namespace kappa {
 RenderResult render_counting_classes(const Scene& scene, const Accelerator& accel, const RenderSettings& settings,
                                      Film& film, const ProgressCallback& progress) {
   QueryClock::get();  // its one-time set-up (about 25 ms) stays out of the frame's time
-  bool lobes = false;  // counted apart only where a surface is not Lambertian (RenderCounters)
-  for (const Material& m : scene.materials) lobes = lobes || !m.lambertian();
+  const bool lobes = scene.has_materials();  // counted apart only where a surface is not Lambertian (RenderCounters)
   tbb::enumerable_thread_specific<RenderCounters> per_thread([&] { return RenderCounters(0, Vec3d{}, false, lobes); });
   RenderResult result = render_tiles(scene, settings, film, progress,
                                      [&] { return ClassQueries(accel, per_thread.local()); });

@@ -6,6 +6,12 @@
 
 namespace kappa {
 
+bool Scene::has_materials() const {
+  for (const Material& m : materials)
+    if (!m.lambertian()) return true;
+  return false;
+}
+
 Bounds3f Scene::bounds() const {
   Bounds3f b;
   for (const Triangle& t : triangles) {

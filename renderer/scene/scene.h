@@ -61,6 +61,9 @@ struct Scene {
   double load_s = 0;
 
   Bounds3f bounds() const;
+  /// Some material is not Material::lambertian(): the frame runs the general
+  /// BSDF and counts bounce rays by lobe.
+  bool has_materials() const;
 };
 
 /// Camera framing a bounding box from the front (+z) and slightly above, far
