@@ -11,6 +11,7 @@
 #include <optional>
 #include <string_view>
 
+#include "hit_filter.h"
 #include "ray.h"
 #include "triangle.h"
 
@@ -30,6 +31,12 @@ class Accelerator {
 
   /// True if anything is hit with ray.tmin < t <= ray.tmax; may stop at the first.
   virtual bool any_hit(const Ray& ray) const = 0;
+
+  /// The same queries where a hit counts only if `filter` accepts it (the
+  /// any-hit filter seam, hit_filter.h: cut-outs). Embree needs to know at
+  /// its build (AccelOptions::filtered) that it will be asked these.
+  virtual std::optional<Hit> closest_hit(const Ray& ray, const FunctionHitFilter& filter) const = 0;
+  virtual bool any_hit(const Ray& ray, const FunctionHitFilter& filter) const = 0;
 
   virtual std::string_view name() const = 0;
   virtual AccelKind kind() const = 0;

@@ -60,9 +60,30 @@ void to_embree(const Ray& r, RTCRay& e) {
   e.flags = 0;
 }
 
+/// An intersect context that carries the query's hit filter to the
+/// geometry's filter callback (Embree passes the context through).
+struct FilterContext {
+  RTCIntersectContext embree;  // first: Embree sees a pointer to it
+  const FunctionHitFilter* filter = nullptr;
+};
+
+/// The geometry's intersection and occlusion filter: a candidate the query's
+/// filter refuses is as if the triangle were not there (valid = 0).
+void filter_candidates(const RTCFilterFunctionNArguments* args) {
+  const auto* context = reinterpret_cast<const FilterContext*>(args->context);
+  if (!context->filter) return;  // an unfiltered query on a filtered build
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+    const Hit candidate{RTCHitN_primID(args->hit, args->N, i), RTCRayN_tfar(args->ray, args->N, i), 1.0f - u - v, u, v};
+    if (!context->filter->accepts(candidate)) args->valid[i] = 0;
+  }
+}
+
 }  // namespace
 
-EmbreeAccelerator::EmbreeAccelerator(std::span<const Triangle> triangles, TaskProgress* progress) {
+EmbreeAccelerator::EmbreeAccelerator(std::span<const Triangle> triangles, TaskProgress* progress, bool filtered)
+    : m_filtered(filtered) {
   const auto start = std::chrono::steady_clock::now();
   m_device = rtcNewDevice(nullptr);
   if (!m_device) {
@@ -111,6 +132,12 @@ EmbreeAccelerator::EmbreeAccelerator(std::span<const Triangle> triangles, TaskPr
         }
       }
       rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
+      if (filtered) {
+        // Only a build that will be asked filtered queries pays for the
+        // callback on every candidate hit.
+        rtcSetGeometryIntersectFilterFunction(geometry, &filter_candidates);
+        rtcSetGeometryOccludedFilterFunction(geometry, &filter_candidates);
+      }
       rtcCommitGeometry(geometry);
       rtcAttachGeometry(m_scene, geometry);  // geomID 0
       rtcReleaseGeometry(geometry);  // the scene keeps its own reference
@@ -176,27 +203,43 @@ void EmbreeAccelerator::check(const char* step) {
   if (!error.empty()) throw std::runtime_error(one_line("embree: " + std::string(step) + ": " + error));
 }
 
-std::optional<Hit> EmbreeAccelerator::closest_hit(const Ray& ray) const {
+std::optional<Hit> EmbreeAccelerator::closest_hit(const Ray& ray) const { return closest(ray, nullptr); }
+
+bool EmbreeAccelerator::any_hit(const Ray& ray) const { return any(ray, nullptr); }
+
+std::optional<Hit> EmbreeAccelerator::closest_hit(const Ray& ray, const FunctionHitFilter& filter) const {
+  if (!m_filtered) throw std::logic_error("embree: a filtered query on a build without its filter callback");
+  return closest(ray, &filter);
+}
+
+bool EmbreeAccelerator::any_hit(const Ray& ray, const FunctionHitFilter& filter) const {
+  if (!m_filtered) throw std::logic_error("embree: a filtered query on a build without its filter callback");
+  return any(ray, &filter);
+}
+
+std::optional<Hit> EmbreeAccelerator::closest(const Ray& ray, const FunctionHitFilter* filter) const {
   if (!queryable(ray)) return std::nullopt;
-  RTCIntersectContext context;  // per query, on the stack: queries share nothing
-  rtcInitIntersectContext(&context);
+  FilterContext context;  // per query, on the stack: queries share nothing
+  rtcInitIntersectContext(&context.embree);
+  context.filter = filter;
   RTCRayHit rh;
   to_embree(ray, rh.ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(m_scene, &context, &rh);
+  rtcIntersect1(m_scene, &context.embree, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   // Embree's u, v weight v1 and v2; Kappa's b0, b1, b2 weight v0, v1, v2.
   return Hit{rh.hit.primID, rh.ray.tfar, 1.0f - rh.hit.u - rh.hit.v, rh.hit.u, rh.hit.v};
 }
 
-bool EmbreeAccelerator::any_hit(const Ray& ray) const {
+bool EmbreeAccelerator::any(const Ray& ray, const FunctionHitFilter* filter) const {
   if (!queryable(ray)) return false;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  FilterContext context;
+  rtcInitIntersectContext(&context.embree);
+  context.filter = filter;
   RTCRay r;
   to_embree(ray, r);
-  rtcOccluded1(m_scene, &context, &r);
+  rtcOccluded1(m_scene, &context.embree, &r);
   return r.tfar == -std::numeric_limits<float>::infinity();  // Embree's mark for "occluded"
 }
 

@@ -29,13 +29,18 @@ class EmbreeAccelerator final : public Accelerator {
  public:
   /// Builds the BVH. Throws std::runtime_error (one line) if Embree fails.
   /// Reports the BVH build to `progress`, if given, as a fraction of 1000.
-  explicit EmbreeAccelerator(std::span<const Triangle> triangles, TaskProgress* progress = nullptr);
+  /// `filtered`: the geometry gets the filter callback that filtered
+  /// queries need (AccelOptions::filtered); an unfiltered build refuses them.
+  explicit EmbreeAccelerator(std::span<const Triangle> triangles, TaskProgress* progress = nullptr,
+                             bool filtered = false);
   ~EmbreeAccelerator() override;
   EmbreeAccelerator(const EmbreeAccelerator&) = delete;  // Embree holds `this` in its callbacks
   EmbreeAccelerator& operator=(const EmbreeAccelerator&) = delete;
 
   std::optional<Hit> closest_hit(const Ray& ray) const override;
   bool any_hit(const Ray& ray) const override;
+  std::optional<Hit> closest_hit(const Ray& ray, const FunctionHitFilter& filter) const override;
+  bool any_hit(const Ray& ray, const FunctionHitFilter& filter) const override;
   std::string_view name() const override { return "embree"; }
   AccelKind kind() const override { return AccelKind::embree; }
 
@@ -50,6 +55,8 @@ class EmbreeAccelerator final : public Accelerator {
  private:
   static void on_error(void* self, RTCError code, const char* message);
   static bool on_memory(void* self, ssize_t bytes, bool post);
+  std::optional<Hit> closest(const Ray& ray, const FunctionHitFilter* filter) const;
+  bool any(const Ray& ray, const FunctionHitFilter* filter) const;
   /// Throws if Embree has reported an error since the last check.
   void check(const char* step);
 
@@ -58,6 +65,7 @@ class EmbreeAccelerator final : public Accelerator {
   std::atomic<std::int64_t> m_bytes{0};  ///< net bytes allocated by m_device
   double m_build_s = 0;
   std::uint64_t m_degenerate = 0;
+  bool m_filtered = false;
   std::mutex m_error_mutex;  ///< the build reports errors from TBB workers
   std::string m_error;       ///< first error reported, "" if none
 };

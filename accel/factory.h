@@ -25,6 +25,9 @@ struct AccelOptions {
   std::uint64_t grid_max_bytes = 0;  ///< refuse grids larger than this; 0 = the default (a quarter of RAM)
   double grid2_top_density = 0;   ///< grid2's top cells per triangle; 0 = its default
   double grid2_leaf_density = 0;  ///< grid2's leaves per triangle of a top cell; 0 = its default
+  /// Queries will pass a hit filter (cut-outs): Embree installs its filter
+  /// callback; the others need nothing at build time.
+  bool filtered = false;
 
   /// grid_max_bytes, or the default when it is 0: the budget of the grid and
   /// of any per-cell counters kept beside it.

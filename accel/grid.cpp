@@ -15,4 +15,14 @@ bool UniformGrid::any_hit(const Ray& ray) const {
   return any_hit(ray, none);
 }
 
+std::optional<Hit> UniformGrid::closest_hit(const Ray& ray, const FunctionHitFilter& filter) const {
+  NoRecorder none;
+  return closest_hit(ray, none, filter);
+}
+
+bool UniformGrid::any_hit(const Ray& ray, const FunctionHitFilter& filter) const {
+  NoRecorder none;
+  return any_hit(ray, none, filter);
+}
+
 }  // namespace kappa

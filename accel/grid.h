@@ -135,6 +135,8 @@ class UniformGrid final : public Accelerator, public CellLayout {
 
   std::optional<Hit> closest_hit(const Ray& ray) const override;
   bool any_hit(const Ray& ray) const override;
+  std::optional<Hit> closest_hit(const Ray& ray, const FunctionHitFilter& filter) const override;
+  bool any_hit(const Ray& ray, const FunctionHitFilter& filter) const override;
   std::string_view name() const override { return "grid"; }
   AccelKind kind() const override { return AccelKind::grid; }
   std::uint64_t bytes() const override { return m_info.bytes; }

@@ -20,6 +20,16 @@ bool NestedGrid::any_hit(const Ray& ray) const {
   return any_hit(ray, none);
 }
 
+std::optional<Hit> NestedGrid::closest_hit(const Ray& ray, const FunctionHitFilter& filter) const {
+  NoRecorder none;
+  return closest_hit(ray, none, filter);
+}
+
+bool NestedGrid::any_hit(const Ray& ray, const FunctionHitFilter& filter) const {
+  NoRecorder none;
+  return any_hit(ray, none, filter);
+}
+
 std::vector<std::uint32_t> NestedGrid::occupancies() const {
   std::vector<std::uint32_t> theta(m_info.leaves);
   for (std::uint64_t i = 0; i < m_info.leaves; ++i) theta[i] = m_offsets[i + 1] - m_offsets[i];

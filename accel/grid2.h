@@ -106,6 +106,8 @@ class NestedGrid final : public Accelerator, public CellLayout {
 
   std::optional<Hit> closest_hit(const Ray& ray) const override;
   bool any_hit(const Ray& ray) const override;
+  std::optional<Hit> closest_hit(const Ray& ray, const FunctionHitFilter& filter) const override;
+  bool any_hit(const Ray& ray, const FunctionHitFilter& filter) const override;
   std::string_view name() const override { return "grid2"; }
   AccelKind kind() const override { return AccelKind::grid2; }
   std::uint64_t bytes() const override { return m_info.bytes; }

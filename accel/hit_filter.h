@@ -31,6 +31,21 @@ struct NoHitFilter {
   constexpr bool accepts(const Hit&) const { return true; }
 };
 
+/// A filter behind a function pointer: what the Accelerator interface takes
+/// (naive and Embree, reached through it), whatever filter the caller has.
+struct FunctionHitFilter {
+  static constexpr bool active = true;
+  const void* context = nullptr;
+  bool (*test)(const void* context, const Hit& candidate) = nullptr;
+  bool accepts(const Hit& h) const { return test(context, h); }
+
+  /// Wraps `filter`, which must outlive the wrapper.
+  template <class F>
+  static FunctionHitFilter of(const F& filter) {
+    return {&filter, [](const void* c, const Hit& h) { return static_cast<const F*>(c)->accepts(h); }};
+  }
+};
+
 /// Whether `candidate` counts under `filter` (always, for an inactive one).
 template <HitFilter Filter>
 [[gnu::always_inline]] inline bool filter_accepts(const Filter& filter, const Hit& candidate) {

@@ -15,6 +15,12 @@ class NaiveAccelerator final : public Accelerator {
 
   std::optional<Hit> closest_hit(const Ray& ray) const override;
   bool any_hit(const Ray& ray) const override;
+  std::optional<Hit> closest_hit(const Ray& ray, const FunctionHitFilter& filter) const override {
+    return closest_hit<FunctionHitFilter>(ray, filter);
+  }
+  bool any_hit(const Ray& ray, const FunctionHitFilter& filter) const override {
+    return any_hit<FunctionHitFilter>(ray, filter);
+  }
   std::string_view name() const override { return "naive"; }
   AccelKind kind() const override { return AccelKind::naive; }
   /// The list of usable triangle ids: all it keeps beside the triangles.

@@ -8,6 +8,7 @@ struct Vec2f {
 };
 
 inline Vec2f operator+(const Vec2f& a, const Vec2f& b) { return {a.u + b.u, a.v + b.v}; }
+inline Vec2f operator-(const Vec2f& a, const Vec2f& b) { return {a.u - b.u, a.v - b.v}; }
 inline Vec2f operator*(const Vec2f& a, float s) { return {a.u * s, a.v * s}; }
 inline bool operator==(const Vec2f& a, const Vec2f& b) { return a.u == b.u && a.v == b.v; }
 

@@ -8,6 +8,7 @@ ClassTotals& ClassTotals::operator+=(const ClassTotals& o) {
   occupied_cells += o.occupied_cells;
   tests += o.tests;
   mailbox_skips += o.mailbox_skips;
+  alpha_tests += o.alpha_tests;
   refs += o.refs;
   hits += o.hits;
   for (int k = 0; k < kMaxCellLevels; ++k) {

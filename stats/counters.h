@@ -26,6 +26,9 @@ struct ClassTotals {
   std::uint64_t mailbox_skips = 0;  ///< tests avoided by the mailbox
   std::uint64_t refs = 0;           ///< sum of Theta_i over visited cells (before mailboxing)
   std::uint64_t hits = 0;           ///< rays that hit something
+  /// Cut-out (alpha) tests: opacity looked up at a candidate hit; each is
+  /// counted in `tests` too, as it is part of testing the triangle.
+  std::uint64_t alpha_tests = 0;
   /// Per level of a structure of several (grid2): cells, tests, references (WalkCounts).
   std::uint64_t level_cells[kMaxCellLevels] = {};
   std::uint64_t level_tests[kMaxCellLevels] = {};

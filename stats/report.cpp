@@ -48,6 +48,7 @@ nlohmann::ordered_json ray_class_section(const ClassSummary& m, std::optional<do
   j["refs_per_ray"] = per_ray(double(t.refs));
   j["mailbox_skips_per_ray"] = per_ray(double(t.mailbox_skips));
   j["hit_fraction"] = per_ray(double(t.hits));
+  j["alpha_tests"] = t.alpha_tests;  // cut-out lookups (also in tests_per_ray)
   j["p_tot"] = t.rays > 0 ? number_or_null(c.p_tot) : nullptr;
   if (p_tot_predicted) j["p_tot_predicted"] = number_or_null(p_tot_predicted);
   j["p_avg"] = t.rays > 0 ? number_or_null(c.p_avg) : nullptr;

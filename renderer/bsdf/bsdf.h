@@ -32,11 +32,14 @@ class Bsdf {
  public:
   /// `ng` the unit geometric normal (the triangle's winding), `ns` the unit
   /// shading normal, `wo` towards the viewer.
-  Bsdf(const Material& m, Vec3f ng, Vec3f ns, const Vec3f& wo) : m_lobes(principled_params(m)) {
+  Bsdf(const Material& m, Vec3f ng, Vec3f ns, const Vec3f& wo) : Bsdf(principled_params(m), m.refracts(), ng, ns, wo) {}
+  /// The lobes of `p` (a material's parameters, its texture maps looked up);
+  /// `refracts` as Material::refracts says of the material.
+  Bsdf(const PrincipledParams& p, bool refracts, Vec3f ng, Vec3f ns, const Vec3f& wo) : m_lobes(p) {
     // Vertex normals say which side is outside; without them ns == ng.
     if (dot(ns, ng) < 0.0f) ng = -ng;
     // An opaque surface is two-sided: it reflects on the side it is seen from.
-    if (!m.refracts() && dot(ng, wo) < 0.0f) {
+    if (!refracts && dot(ng, wo) < 0.0f) {
       ng = -ng;
       ns = -ns;
     }

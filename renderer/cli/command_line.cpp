@@ -81,6 +81,11 @@ void add_render_flags(CLI::App& render, RenderOptions& o, bool converge) {
       ->capture_default_str();
   if (converge) return;
   render.add_option("--report", o.report, "write the per-frame JSON report (stats/README.md) here");
+  render.add_option("--preview", o.preview,
+                    "also an 8-bit sRGB picture of the render to F.png (or .jpg, .tif): radiance x 2^EV, clipped, "
+                    "sRGB-encoded (Blender's Standard view)");
+  render.add_option("--preview-exposure", o.preview_exposure, "the preview's exposure EV (default 0)")
+      ->check(CLI::Range(-64.0, 64.0));
   render.add_option("--cell-map", o.cell_map, "per-cell p_i and Theta_i projected along an axis, to F.exr or F.png");
   render.add_option("--cell-map-axis", o.cell_map_axis, "projection axis of the cell map")
       ->check(CLI::IsMember({"x", "y", "z"}))

@@ -43,6 +43,8 @@ struct RenderOptions {
 #endif
   std::string report;           ///< per-frame JSON report path
   std::string cell_sample = "auto";  ///< per-cell counts for 1 path in N: auto | N
+  std::string preview;          ///< --preview F.png|jpg|tif: an 8-bit sRGB picture beside the EXR
+  double preview_exposure = 0;  ///< --preview-exposure EV: the preview's scale, 2^EV
   std::string cell_map;         ///< --cell-map F.exr|png
   std::string cell_map_axis = "y";  ///< projection axis of the cell map
   std::string calibration;      ///< T0/Ts/Th file (default: kappa_calibration.json beside the executable)

@@ -93,7 +93,9 @@ struct Reference {
 RenderResult render_once(const Scene& scene, const RenderOptions& options, int spp, const AovSelection& aov, Film& film,
                          bool show_progress) {
   const ThreadLimit limit(options.threads);
-  const auto accel = make_accelerator(options.accel, scene.triangles, options.build);
+  AccelOptions build = options.build;
+  build.filtered = scene.has_cutouts();
+  const auto accel = make_accelerator(options.accel, scene.triangles, build);
   RenderSettings settings = render_settings_of(options, aov);
   settings.spp = spp;
   ProgressBar bar(show_progress);
@@ -187,7 +189,9 @@ ConvergeCurve curve_of(const Setting& setting, const Scene& scene, const std::ve
   ConvergeCurve curve{setting.name, setting.key, setting.value, "", {}};
   const RenderOptions& o = setting.options;
   const ThreadLimit limit(o.threads);
-  const auto accel = make_accelerator(o.accel, scene.triangles, o.build);
+  AccelOptions build = o.build;
+  build.filtered = scene.has_cutouts();
+  const auto accel = make_accelerator(o.accel, scene.triangles, build);
   RenderSettings settings = render_settings_of(o, AovSelection{});
   const auto record = [&](int n, double time_s, const Film& film) {
     curve.points.push_back({n, time_s, image_error(film.rgb, ref.image.rgb)});

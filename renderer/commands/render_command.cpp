@@ -24,6 +24,7 @@
 #include "renderer/cli/render_settings.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/cell_map.h"
+#include "renderer/io/preview.h"
 #include "renderer/io/exr_output.h"
 #include "renderer/io/output_guard.h"
 #include "renderer/render/accel_choice.h"
@@ -134,6 +135,7 @@ int run_render(const RenderOptions& options) {
   if (const auto ext = std::filesystem::path(options.cell_map).extension(); !options.cell_map.empty() && ext != ".exr" &&
                                                                             ext != ".png")
     throw InputError("--cell-map: '" + options.cell_map + "' must end in .exr or .png");
+  if (!options.preview.empty()) check_preview_name(options.preview);
   RenderSettings settings = render_settings_of(options, aov);  // a bad setting is refused before loading
   const bool grid_by_model = options.build.grid_res == "model";
   if (grid_by_model && options.accel != "grid" && options.accel != "auto")
@@ -165,10 +167,11 @@ int run_render(const RenderOptions& options) {
   const std::filesystem::path out_path = output_path(options, scene);
   std::vector<std::filesystem::path> inputs = scene.inputs;
   inputs.push_back(calibration_path);
-  refuse_outputs_over_inputs({out_path, options.report, options.cell_map}, inputs);
+  refuse_outputs_over_inputs({out_path, options.report, options.cell_map, options.preview}, inputs);
   AtomicOutput output(out_path, OutputKind::image);
   const auto report_out = optional_output(options.report);
   const auto cell_map_out = optional_output(options.cell_map, OutputKind::image);
+  const auto preview_out = optional_output(options.preview, OutputKind::image);
   // The calibration too is read now: a bad file must not cost a finished render.
   // One left beside the binary by an older Kappa is set aside with a word (a
   // rebuild must not stop every render); one named with --calibration is
@@ -189,6 +192,7 @@ int run_render(const RenderOptions& options) {
   AccelRequest request;
   request.accel = options.accel;
   request.build = options.build;
+  request.build.filtered = scene.has_cutouts();  // Embree installs its cut-out callback
   request.needs_cells = settings.stats || aov.cost || !options.cell_map.empty();
   // The frame's paths: its pixels at --spp (a budget's cap, or the default
   // 64 when a budget decides how many).
@@ -293,8 +297,10 @@ int run_render(const RenderOptions& options) {
     // waits until both are done (and then ends the process as it would have).
     const std::string report_text = report.dump(2) + "\n";
     if (report_out) write_temporary(*report_out, report_text);
+    if (preview_out) write_preview(*preview_out, film, float(options.preview_exposure));
     const SignalsHeld held;
     output.commit();
+    if (preview_out) preview_out->commit();
     if (report_out) report_out->commit();
   }
   if (!result.stats_note.empty()) std::fprintf(stderr, "kappa: warning: %s\n", result.stats_note.c_str());

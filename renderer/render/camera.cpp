@@ -30,4 +30,24 @@ Ray Camera::generate_ray(float x, float y) const {
   return r;
 }
 
+void Camera::footprint(const Vec3f& p, const Vec3f& n, const Vec3f& d, Vec3f& dpdx, Vec3f& dpdy) const {
+  dpdx = dpdy = Vec3f{0, 0, 0};
+  // The film plane at distance 1 along forward: the ray's direction scaled
+  // to it, and the neighbouring pixels' directions one pixel step away.
+  const float along = dot(d, m_forward);
+  if (!(along > 0.0f)) return;
+  const Vec3f D = d / along;
+  const Vec3f to_p = p - m_eye;
+  const float plane = dot(n, to_p);
+  auto meet = [&](const Vec3f& dir, Vec3f& dp) {
+    const float denom = dot(n, dir);
+    if (!(std::abs(denom) > 1e-8f)) return;
+    const float t = plane / denom;
+    if (!(t > 0.0f) || !std::isfinite(t)) return;
+    dp = m_eye + dir * t - p;
+  };
+  meet(D + m_right * m_scale_x, dpdx);
+  meet(D - m_up * m_scale_y, dpdy);
+}
+
 }  // namespace kappa

@@ -16,6 +16,12 @@ class Camera {
   /// row; direction normalized, so hit t is the distance from the eye.
   Ray generate_ray(float x, float y) const;
 
+  /// How the point p (unit geometric normal n) seen along the camera ray of
+  /// direction d moves per pixel across (dpdx) and down (dpdy): where the
+  /// rays through the neighbouring film positions meet p's tangent plane
+  /// (exact ray differentials for a pinhole; zero at grazing angles).
+  void footprint(const Vec3f& p, const Vec3f& n, const Vec3f& d, Vec3f& dpdx, Vec3f& dpdy) const;
+
  private:
   Vec3f m_eye, m_forward, m_right, m_up;
   float m_scale_x = 1, m_scale_y = 1;  ///< tan(half fov) times 2/size per axis

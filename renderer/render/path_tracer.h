@@ -12,6 +12,8 @@
 #include "core/check.h"
 #include "renderer/bsdf/bsdf.h"
 #include "renderer/render/frame.h"
+#include "renderer/render/camera.h"
+#include "renderer/render/environment_map.h"
 #include "renderer/render/interaction.h"
 #include "renderer/render/lights.h"
 #include "renderer/render/path_variant.h"
@@ -19,6 +21,9 @@
 #include "renderer/render/shading_point.h"
 #include "renderer/render/sampling.h"
 #include "renderer/scene/scene.h"
+#include "renderer/texture/cutout_filter.h"
+#include "renderer/texture/texture_lookup.h"
+#include "renderer/texture/uv_footprint.h"
 
 namespace kappa {
 
@@ -31,18 +36,23 @@ struct FirstHit {
 
 class PathTracer {
  public:
-  PathTracer(const Scene& scene, const RenderSettings& settings)
-      : m_scene(scene), m_lights(scene), m_settings(settings) {}
+  /// `camera`, if given, gives camera rays' texture footprints (uv_footprint.h).
+  PathTracer(const Scene& scene, const RenderSettings& settings, const Camera* camera = nullptr)
+      : m_scene(scene), m_lights(scene), m_settings(settings), m_camera(camera), m_cutouts(scene) {
+    if (scene.environment_image) m_env.emplace(*scene.environment_image, scene.environment_rotation_deg);
+  }
 
   /// What the scene has to light it, for choose_path_variant.
   SceneLighting lighting() const {
-    return {m_lights.triangle_count() > 0, !(m_scene.environment == Vec3f{0, 0, 0}), m_lights.pmf_environment() > 0.0f};
+    return {m_lights.triangle_count() > 0, !(m_scene.environment == Vec3f{0, 0, 0}), m_lights.pmf_environment() > 0.0f,
+            m_env.has_value()};
   }
   /// What its surfaces need, for choose_path_variant.
   SceneSurfaces surfaces() const {
     SceneSurfaces s;
     for (const TriangleNormals& n : m_scene.normals) s.vertex_normals = s.vertex_normals || n.given();
     s.non_lambertian = m_scene.has_materials();
+    s.cutouts = m_cutouts.any();
     return s;
   }
 
@@ -68,22 +78,31 @@ class PathTracer {
     for (int depth = 0;; ++depth) {
       // A scene with materials counts its bounce rays by lobe too.
       std::optional<Hit> hit;
-      if constexpr (V.surfaces == Surfaces::general) hit = q.closest_by_lobe(ray, depth, lobe);
-      else hit = q.closest(ray, depth);
+      if constexpr (V.images) {
+        hit = m_cutouts.any() ? q.closest_by_lobe(ray, depth, lobe, m_cutouts) : q.closest_by_lobe(ray, depth, lobe);
+      } else if constexpr (V.surfaces == Surfaces::general) {
+        hit = q.closest_by_lobe(ray, depth, lobe);
+      } else {
+        hit = q.closest(ray, depth);
+      }
       if (!hit) {
         if constexpr (V.environment) {
+          // An image (V.images, when the scene has one) or the constant.
+          const bool image = V.images && m_env.has_value();
+          const Vec3f Le = image ? m_env->Le(ray.d) : m_scene.environment;
           if (depth == 0 || !kLightSamples || prev_delta) {
-            L += beta * m_scene.environment;
+            L += beta * Le;
           } else if constexpr (kMis) {
-            const float light_pdf =
-                m_lights.pmf_environment() * cosine_hemisphere_pdf(dot(prev_normal, ray.d));
-            L += beta * m_scene.environment * power_heuristic(prev_bsdf_pdf, light_pdf);
+            const float dir_pdf = image ? m_env->pdf(ray.d) : cosine_hemisphere_pdf(dot(prev_normal, ray.d));
+            const float light_pdf = m_lights.pmf_environment() * dir_pdf;
+            L += beta * Le * power_heuristic(prev_bsdf_pdf, light_pdf);
           } else if (m_lights.pmf_environment() == 0.0f) {
-            L += beta * m_scene.environment;  // nee: an environment light sampling cannot pick
+            L += beta * Le;  // nee: an environment light sampling cannot pick
           } else if constexpr (V.surfaces == Surfaces::general) {
-            // nee: light sampling draws the environment about the oriented
-            // normal; what refraction reached below it only BSDF sampling finds.
-            if (!(dot(prev_normal, ray.d) > 0.0f)) L += beta * m_scene.environment;
+            // nee: light sampling draws the constant environment about the
+            // oriented normal; what refraction reached below it only BSDF
+            // sampling finds (an image's samples cover the whole sphere).
+            if (!image && !(dot(prev_normal, ray.d) > 0.0f)) L += beta * Le;
           }
         }
         break;
@@ -125,8 +144,15 @@ class PathTracer {
       }
       if (depth >= m_settings.max_depth) break;
       if constexpr (V.surfaces == Surfaces::general) {
-        if (!scatter_general<V>(shading, wo, n, depth, sampler, q, L, beta, ray, prev_bsdf_pdf, prev_normal, prev_delta,
-                                eta_scale, lobe))
+        bsdf::PrincipledParams params = bsdf::principled_params(mat);
+        if (mat.textured()) {
+          params = textured_params(*hit, shading, mat, depth, ray);
+          if constexpr (V.aovs) {
+            if (depth == 0) first.albedo = params.base;
+          }
+        }
+        if (!scatter_general<V>(shading, params, wo, n, depth, sampler, q, L, beta, ray, prev_bsdf_pdf, prev_normal,
+                                prev_delta, eta_scale, lobe))
           break;
         continue;
       }
@@ -168,6 +194,32 @@ class PathTracer {
   }
 
  private:
+  /// The material's parameters with its texture maps looked up at the hit:
+  /// a camera ray's with the pixel's footprint (scaled as pbrt-v4 does by
+  /// max(1/8, 1/sqrt(spp)): more samples filter less), others at a point.
+  bsdf::PrincipledParams textured_params(const Hit& hit, const ShadingPoint& shading, const Material& mat, int depth,
+                                         const Ray& ray) const {
+    UvFootprint fp;
+    if (depth == 0 && m_camera && hit.triangle < m_scene.uvs.size()) {
+      Vec3f dpdx, dpdy;
+      m_camera->footprint(shading.geometry.p, shading.geometry.n, ray.d, dpdx, dpdy);
+      const float scale = std::max(0.125f, 1.0f / std::sqrt(float(std::max(m_settings.spp, 1))));
+      fp = uv_footprint(m_scene.triangles[hit.triangle], m_scene.uvs[hit.triangle], dpdx * scale, dpdy * scale);
+    }
+    bsdf::PrincipledParams p = bsdf::principled_params(mat);
+    apply_texture_maps(m_scene, mat, shading.uv, fp, p);
+    return p;
+  }
+
+  /// A shadow ray's query, through the cut-outs where the scene has them.
+  template <PathVariant V, class Queries>
+  bool occluded(const Ray& r, Queries& q) const {
+    if constexpr (V.images) {
+      if (m_cutouts.any()) return q.shadow(r, m_cutouts);
+    }
+    return q.shadow(r);
+  }
+
   /// The shading normal on the side of the oriented geometric normal n (the
   /// viewer's side), or n itself where the shading normal faces away from the
   /// viewer (a silhouette of a smooth mesh: it would leave a black spot).
@@ -201,6 +253,19 @@ class PathTracer {
     else (void)choice;
     if constexpr (V.environment) {
       if (light == m_lights.environment_index()) {
+        if constexpr (V.images) {
+          if (m_env) {
+            // An image: drawn by its luminance over the whole sphere.
+            const std::optional<EnvironmentMap::Sample> es = m_env->sample(u1, u2);
+            if (!es) return std::nullopt;
+            const float cos_s = dot(n, es->wi);
+            if ((!two_sided && cos_s <= 0.0f) || cos_s == 0.0f) return std::nullopt;
+            const float light_pdf = m_lights.pmf_environment() * es->pdf;
+            if (!(light_pdf > 0.0f)) return std::nullopt;
+            if (occluded<V>(Ray{offset_ray_origin(sp, es->wi), es->wi}, q)) return std::nullopt;
+            return LightSample{es->wi, es->Le, light_pdf, cos_s};
+          }
+        }
         // Cosine-weighted about the oriented normal, as for the Lambertian
         // vertex: the same light pdf that the escaped ray's MIS weight reads.
         const Vec3f local = sample_cosine_hemisphere(u1, u2);
@@ -209,7 +274,7 @@ class PathTracer {
         const Vec3f wi = Frame(n).to_world(local);
         const float light_pdf = m_lights.pmf_environment() * dir_pdf;
         if (!(light_pdf > 0.0f)) return std::nullopt;
-        if (q.shadow(Ray{offset_ray_origin(sp, wi), wi})) return std::nullopt;
+        if (occluded<V>(Ray{offset_ray_origin(sp, wi), wi}, q)) return std::nullopt;
         return LightSample{wi, m_scene.environment, light_pdf, local.z};
       }
     }
@@ -234,7 +299,7 @@ class PathTracer {
       const Vec3f d = to - from;
       const float len = length(d);
       if (!(len > 0.0f)) return std::nullopt;
-      if (q.shadow(Ray{from, d / len, 0.0f, len * (1.0f - kShadowEpsilon)})) return std::nullopt;
+      if (occluded<V>(Ray{from, d / len, 0.0f, len * (1.0f - kShadowEpsilon)}, q)) return std::nullopt;
       return LightSample{wi, m_scene.materials[m_scene.material_of[id]].emission, light_pdf, cos_s};
     }
     return std::nullopt;
@@ -244,14 +309,15 @@ class PathTracer {
   /// BSDF's non-delta lobes, then the BSDF's own sample continues the path.
   /// False when the path ends here.
   template <PathVariant V, class Sampler, class Queries>
-  bool scatter_general(const ShadingPoint& shading, const Vec3f& wo, const Vec3f& n, int depth, Sampler& sampler,
+  bool scatter_general(const ShadingPoint& shading, const bsdf::PrincipledParams& params, const Vec3f& wo,
+                       const Vec3f& n, int depth, Sampler& sampler,
                        Queries& q, Vec3f& L, Vec3f& beta, Ray& ray, float& prev_bsdf_pdf, Vec3f& prev_normal,
                        bool& prev_delta, float& eta_scale, bsdf::Lobe& lobe) const {
     constexpr bool kMis = V.strategy == LightSampling::mis;
     constexpr bool kLightSamples = V.strategy != LightSampling::bsdf;
     const Material& mat = *shading.material;
     const SurfacePoint& sp = shading.geometry;
-    const bsdf::Bsdf f(mat, sp.n, shading.shading_normal, wo);
+    const bsdf::Bsdf f(params, mat.refracts(), sp.n, shading.shading_normal, wo);
     if constexpr (kLightSamples) {
       // Delta lobes alone: no light sample can reach them (the numbers of
       // its dimensions are left unread).
@@ -310,6 +376,9 @@ class PathTracer {
   const Scene& m_scene;
   Lights m_lights;
   const RenderSettings& m_settings;
+  const Camera* m_camera;
+  CutoutFilter m_cutouts;
+  std::optional<EnvironmentMap> m_env;
 };
 
 }  // namespace kappa

@@ -30,7 +30,8 @@ PathVariant choose_path_variant(SceneLighting scene, LightSampling strategy, boo
     // Nothing light sampling could pick: BSDF sampling alone, the same estimator.
     if (!v.triangle_lights && !(v.environment && scene.environment_light)) v.strategy = LightSampling::bsdf;
   }
-  v.surfaces = surfaces.non_lambertian ? Surfaces::general
+  v.images = surfaces.cutouts || scene.environment_image;
+  v.surfaces = surfaces.non_lambertian || v.images ? Surfaces::general
                : surfaces.vertex_normals ? Surfaces::lambertian_smooth
                                          : Surfaces::lambertian;
   if (v.surfaces != Surfaces::lambertian) {
@@ -52,6 +53,7 @@ std::string path_variant_name(const PathVariant& v) {
   }
   if (v.surfaces == Surfaces::lambertian_smooth) name += ", shading normals";
   if (v.surfaces == Surfaces::general) name += ", materials";
+  if (v.images) name += ", images";
   if (v.aovs) name += ", first hit";
   return name;
 }

@@ -52,15 +52,20 @@ struct PathVariant {
   bool environment = true;      ///< rays that escape read the environment, which is also sampled unless bsdf
   bool aovs = true;             ///< the camera ray's first hit is recorded (albedo, normal, depth, cost AOVs)
   Surfaces surfaces = Surfaces::lambertian;
+  /// The scene's images: cut-outs (queries pass the any-hit filter) and an
+  /// environment image (sampled by its distribution). Compiled only as each
+  /// strategy's general variant on general surfaces, both behind run-time
+  /// checks of whether the scene has them.
+  bool images = false;
 };
 
 /// Every variant the frames are compiled for: with AOVs and without, the
 /// strategies with lights (mis and nee: triangles, environment or both),
-/// bsdf (with and without the environment), on Lambertian surfaces; and each
+/// bsdf (with and without the environment), on Lambertian surfaces; each
 /// strategy's general variant (every light on, the first hit recorded) on
-/// the other two kinds of surfaces.
-inline constexpr std::array<PathVariant, 22> kPathVariants = [] {
-  std::array<PathVariant, 22> v{};
+/// the other two kinds of surfaces; and on general surfaces with images.
+inline constexpr std::array<PathVariant, 25> kPathVariants = [] {
+  std::array<PathVariant, 25> v{};
   std::size_t i = 0;
   for (bool aovs : {false, true}) {
     for (LightSampling s : {LightSampling::mis, LightSampling::nee})
@@ -73,6 +78,9 @@ inline constexpr std::array<PathVariant, 22> kPathVariants = [] {
     v[i++] = {LightSampling::nee, true, true, true, k};
     v[i++] = {LightSampling::bsdf, false, true, true, k};
   }
+  v[i++] = {LightSampling::mis, true, true, true, Surfaces::general, true};
+  v[i++] = {LightSampling::nee, true, true, true, Surfaces::general, true};
+  v[i++] = {LightSampling::bsdf, false, true, true, Surfaces::general, true};
   return v;
 }();
 
@@ -81,12 +89,14 @@ struct SceneLighting {
   bool triangle_lights = false;    ///< emissive triangles bright enough to be lights (Lights::triangle_count)
   bool environment = false;        ///< a non-zero environment
   bool environment_light = false;  ///< one light sampling can pick (its power does not round to 0)
+  bool environment_image = false;  ///< the environment is an image (EnvironmentMap)
 };
 
 /// What the scene's surfaces need (Scene::materials, Scene::normals).
 struct SceneSurfaces {
   bool vertex_normals = false;     ///< some triangle has its mesh's vertex normals
   bool non_lambertian = false;     ///< some material is not Material::lambertian()
+  bool cutouts = false;            ///< some material is cut out somewhere (CutoutFilter)
 };
 
 /// The variant for a scene and the settings; `specialise` false gives the
@@ -107,7 +117,7 @@ void with_path_variant(const PathVariant& v, F&& f) {
   const bool ran = [&]<std::size_t... I>(std::index_sequence<I...>) {
     return ((v.strategy == kPathVariants[I].strategy && v.triangle_lights == kPathVariants[I].triangle_lights &&
              v.environment == kPathVariants[I].environment && v.aovs == kPathVariants[I].aovs &&
-             v.surfaces == kPathVariants[I].surfaces &&
+             v.surfaces == kPathVariants[I].surfaces && v.images == kPathVariants[I].images &&
              (f.template operator()<kPathVariants[I]>(), true)) ||
             ...);
   }(std::make_index_sequence<kPathVariants.size()>{});

@@ -24,14 +24,26 @@ struct RecordingQueries {
   QueryWork work() const { return {}; }
   void begin_path(std::uint64_t /*pixel*/, std::uint64_t /*sample*/) {}
 
-  std::optional<Hit> closest(const Ray& r, int depth) { return record(r, class_of_depth(depth)); }
-  std::optional<Hit> closest_by_lobe(const Ray& r, int depth, bsdf::Lobe /*lobe*/) { return closest(r, depth); }
-  bool shadow(const Ray& r) { return record(r, kShadow).has_value(); }
+  template <HitFilter F = NoHitFilter>
+  std::optional<Hit> closest(const Ray& r, int depth, const F& filter = {}) {
+    return record(r, class_of_depth(depth), filter);
+  }
+  template <HitFilter F = NoHitFilter>
+  std::optional<Hit> closest_by_lobe(const Ray& r, int depth, bsdf::Lobe /*lobe*/, const F& filter = {}) {
+    return closest(r, depth, filter);
+  }
+  template <HitFilter F = NoHitFilter>
+  bool shadow(const Ray& r, const F& filter = {}) {
+    return record(r, kShadow, filter).has_value();
+  }
 
  private:
-  std::optional<Hit> record(const Ray& r, RenderClass k) {
+  /// The hit under the frame's cut-outs, if any: the walk a candidate grid
+  /// would make ends there.
+  template <HitFilter F>
+  std::optional<Hit> record(const Ray& r, RenderClass k, const F& filter) {
     ++rays;
-    const std::optional<Hit> hit = accel.closest_hit(r);
+    const std::optional<Hit> hit = filtered_closest(accel, r, filter);
     out.push_back({r, hit ? hit->t : r.tmax, hit.has_value(), k});
     return hit;
   }

@@ -11,8 +11,11 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <type_traits>
 
 #include "accel/accel.h"
+#include "accel/hit_filter.h"
+#include "accel/recorder.h"
 #include "core/hash.h"
 #include "renderer/bsdf/lobe_sample.h"
 #include "renderer/render/sampling.h"
@@ -29,6 +32,53 @@ struct QueryWork {
   std::uint64_t cells = 0, tests = 0;
 };
 
+/// A cut-out filter (renderer/texture/cutout_filter.h) whose alpha tests
+/// are counted in a class's totals, each one a triangle test too: it changes
+/// the cost the model predicts.
+template <class F>
+struct AlphaCounted {
+  static constexpr bool active = true;
+  const F& filter;
+  ClassTotals& totals;
+  bool accepts(const Hit& h) const {
+    std::uint64_t lookups = 0;
+    const bool accepted = filter.test(h, lookups);
+    totals.alpha_tests += lookups;
+    totals.tests += lookups;
+    return accepted;
+  }
+};
+
+/// `filter` counted into `totals` (an inactive filter is passed through).
+template <HitFilter F>
+auto counted_filter(const F& filter, ClassTotals& totals) {
+  if constexpr (F::active) return AlphaCounted<F>{filter, totals};
+  else return filter;
+}
+
+/// The closest hit of `accel` under `filter`: a cell walker's template walk,
+/// or the interface's filtered query (naive, Embree).
+template <class A, HitFilter F>
+std::optional<Hit> filtered_closest(const A& accel, const Ray& r, const F& filter) {
+  if constexpr (!F::active) return accel.closest_hit(r);
+  else if constexpr (std::is_same_v<A, Accelerator>) return accel.closest_hit(r, FunctionHitFilter::of(filter));
+  else {
+    NoRecorder none;
+    return accel.closest_hit(r, none, filter);
+  }
+}
+template <class A, HitFilter F>
+bool filtered_any(const A& accel, const Ray& r, const F& filter) {
+  if constexpr (!F::active) return accel.any_hit(r);
+  else if constexpr (std::is_same_v<A, Accelerator>) return accel.any_hit(r, FunctionHitFilter::of(filter));
+  else {
+    NoRecorder none;
+    return accel.any_hit(r, none, filter);
+  }
+}
+
+/// Every query takes an any-hit filter, NoHitFilter (compiled out) unless
+/// the frame's scene has cut-outs.
 template <class A>
 struct PlainQueries {
   const A& accel;
@@ -37,14 +87,19 @@ struct PlainQueries {
   QueryWork work() const { return {}; }
   void begin_path(std::uint64_t /*pixel*/, std::uint64_t /*sample*/) {}
 
-  std::optional<Hit> closest(const Ray& r, int /*depth*/) {
+  template <HitFilter F = NoHitFilter>
+  std::optional<Hit> closest(const Ray& r, int /*depth*/, const F& filter = {}) {
     ++rays;
-    return accel.closest_hit(r);
+    return filtered_closest(accel, r, filter);
   }
-  std::optional<Hit> closest_by_lobe(const Ray& r, int depth, bsdf::Lobe /*lobe*/) { return closest(r, depth); }
-  bool shadow(const Ray& r) {
+  template <HitFilter F = NoHitFilter>
+  std::optional<Hit> closest_by_lobe(const Ray& r, int depth, bsdf::Lobe /*lobe*/, const F& filter = {}) {
+    return closest(r, depth, filter);
+  }
+  template <HitFilter F = NoHitFilter>
+  bool shadow(const Ray& r, const F& filter = {}) {
     ++rays;
-    return accel.any_hit(r);
+    return filtered_any(accel, r, filter);
   }
 };
 
@@ -82,17 +137,25 @@ class ClassQueries {
   QueryWork work() const { return {}; }
   void begin_path(std::uint64_t /*pixel*/, std::uint64_t /*sample*/) {}
 
-  std::optional<Hit> closest(const Ray& r, int depth) {
-    return counted<std::optional<Hit>>(class_of_depth(depth), [&] { return m_accel.closest_hit(r); });
+  template <HitFilter F = NoHitFilter>
+  std::optional<Hit> closest(const Ray& r, int depth, const F& filter = {}) {
+    const RenderClass k = class_of_depth(depth);
+    const auto f = counted_filter(filter, m_counters.classes[k].totals);
+    return counted<std::optional<Hit>>(k, [&] { return filtered_closest(m_accel, r, f); });
   }
   /// A bounce ray counted in its class and in its lobe's totals.
-  std::optional<Hit> closest_by_lobe(const Ray& r, int depth, bsdf::Lobe lobe) {
-    return counted<std::optional<Hit>>(class_of_depth(depth), [&] { return m_accel.closest_hit(r); },
+  template <HitFilter F = NoHitFilter>
+  std::optional<Hit> closest_by_lobe(const Ray& r, int depth, bsdf::Lobe lobe, const F& filter = {}) {
+    const RenderClass k = class_of_depth(depth);
+    const auto f = counted_filter(filter, m_counters.classes[k].totals);
+    return counted<std::optional<Hit>>(k, [&] { return filtered_closest(m_accel, r, f); },
                                        depth > 0 ? &m_counters.lobes[std::size_t(lobe)] : nullptr,
                                        std::size_t(lobe));
   }
-  bool shadow(const Ray& r) {
-    return counted<bool>(kShadow, [&] { return m_accel.any_hit(r); });
+  template <HitFilter F = NoHitFilter>
+  bool shadow(const Ray& r, const F& filter = {}) {
+    const auto f = counted_filter(filter, m_counters.classes[kShadow].totals);
+    return counted<bool>(kShadow, [&] { return filtered_any(m_accel, r, f); });
   }
 
  private:
@@ -160,13 +223,17 @@ class CountingQueries {
     return w;
   }
 
-  std::optional<Hit> closest(const Ray& r, int depth) {
-    return counted<std::optional<Hit>>(class_of_depth(depth), [&](auto& tally) { return m_walker.closest_hit(r, tally); });
+  template <HitFilter F = NoHitFilter>
+  std::optional<Hit> closest(const Ray& r, int depth, const F& filter = {}) {
+    const RenderClass k = class_of_depth(depth);
+    const auto f = counted_filter(filter, m_counters.classes[k].totals);
+    return counted<std::optional<Hit>>(k, [&](auto& tally) { return m_walker.closest_hit(r, tally, f); });
   }
   /// A bounce ray walked once and counted twice: in its depth's class and
   /// in the lobe's that sampled it (frames of a scene with materials only).
-  std::optional<Hit> closest_by_lobe(const Ray& r, int depth, bsdf::Lobe lobe) {
-    if (depth == 0) return closest(r, depth);
+  template <HitFilter F = NoHitFilter>
+  std::optional<Hit> closest_by_lobe(const Ray& r, int depth, bsdf::Lobe lobe, const F& filter = {}) {
+    if (depth == 0) return closest(r, depth, filter);
     const RenderClass k = class_of_depth(depth);
     const std::size_t l = std::size_t(lobe);
     CellCounters& c = m_counters.classes[k];
@@ -175,12 +242,13 @@ class CountingQueries {
     ++c.totals.rays;
     ++b.totals.rays;
     std::optional<Hit> result;
+    const auto f = counted_filter(filter, c.totals);
     const std::uint64_t ticks = m_clock.timed(k, [&] {
       if (m_path_per_cell && b.per_cell()) {
-        result = walk_tee(c, b, r);
+        result = walk_tee(c, b, r, f);
       } else {
         CellCounters::TeeTally<PerCell::no> tally(c, b);
-        result = m_walker.closest_hit(r, tally);
+        result = m_walker.closest_hit(r, tally, f);
       }
     });
     m_counters.lobe_ticks[l] += ticks;
@@ -189,8 +257,10 @@ class CountingQueries {
     return result;
   }
 
-  bool shadow(const Ray& r) {
-    return counted<bool>(kShadow, [&](auto& tally) { return m_walker.any_hit(r, tally); });
+  template <HitFilter F = NoHitFilter>
+  bool shadow(const Ray& r, const F& filter = {}) {
+    const auto f = counted_filter(filter, m_counters.classes[kShadow].totals);
+    return counted<bool>(kShadow, [&](auto& tally) { return m_walker.any_hit(r, tally, f); });
   }
 
  private:
@@ -222,9 +292,10 @@ class CountingQueries {
     return walk(tally);
   }
 
-  [[gnu::noinline]] std::optional<Hit> walk_tee(CellCounters& c, CellCounters& b, const Ray& r) const {
+  template <HitFilter F>
+  [[gnu::noinline]] std::optional<Hit> walk_tee(CellCounters& c, CellCounters& b, const Ray& r, const F& filter) const {
     CellCounters::TeeTally<SampledMode> tally(c, b);
-    return m_walker.closest_hit(r, tally);
+    return m_walker.closest_hit(r, tally, filter);
   }
 
   const Walker& m_walker;

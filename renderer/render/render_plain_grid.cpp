@@ -1,6 +1,7 @@
 // The grid's stats-off frame: every query calls UniformGrid directly (a final
 // class: no virtual call reaches its per-ray loop), alone in its translation
 // unit as in a build without statistics.
+#include "accel/grid_traverse.h"  // the filtered walk (cut-outs) is instantiated here
 #include "renderer/render/frames.h"
 #include "renderer/render/queries.h"
 #include "renderer/render/tile_loop.h"

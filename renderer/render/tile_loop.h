@@ -30,7 +30,7 @@ template <class MakeQueries>
 RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Film& film, const ProgressCallback& progress,
                           MakeQueries&& make_queries) {
   const Camera camera(scene.camera, film.width, film.height);
-  const PathTracer tracer(scene, settings);
+  const PathTracer tracer(scene, settings, &camera);
   const int tiles_x = (film.width + kTileSize - 1) / kTileSize;
   const int tiles_y = (film.height + kTileSize - 1) / kTileSize;
   const std::size_t tile_count = std::size_t(tiles_x) * std::size_t(tiles_y);

@@ -116,7 +116,7 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
     ClassTotals all;
     double all_seconds = 0;
     const auto section = [](const ClassTotals& t, double seconds) {
-      return any_accel_class_section(t.rays, t.hits, seconds);
+      return any_accel_class_section(t.rays, t.hits, seconds, t.alpha_tests);
     };
     for (std::size_t k = 0; k < kRenderClasses; ++k) {
       rays[kRenderClassNames[k]] = section(rc.classes[k].totals, clock.seconds(rc.ticks[k]));

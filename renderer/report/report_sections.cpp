@@ -1,9 +1,39 @@
 #include "renderer/report/report_sections.h"
 
+#include "renderer/image/image_library.h"
 #include "renderer/version.h"
 #include "stats/report.h"
 
 namespace kappa {
+
+nlohmann::ordered_json images_section(const Scene& scene) {
+  nlohmann::ordered_json j;
+  // Whether this process loaded the OpenImageIO module: never for a scene
+  // without textures or an environment image (and no PNG preview).
+  j["module_loaded"] = image_library_loaded();
+  j["texture_maps"] = scene.texture_maps.size();
+  j["opacity_masks"] = scene.opacity_masks.size();
+  if (scene.environment_image) {
+    j["environment_image"] = {{"file", scene.environment_file.string()},
+                              {"width", scene.environment_image->width},
+                              {"height", scene.environment_image->height},
+                              {"rotation_deg", scene.environment_rotation_deg}};
+  } else {
+    j["environment_image"] = nullptr;
+  }
+  j["texture_cache"] = nullptr;
+  if (image_library_loaded() && !scene.texture_maps.empty()) {
+    const TextureCacheStats c = image_library().statistics();
+    const double hit_rate =
+        c.tile_lookups > 0 ? 1.0 - double(c.tiles_read) / double(c.tile_lookups) : 0.0;
+    j["texture_cache"] = {{"tile_lookups", c.tile_lookups}, {"tiles_read", c.tiles_read},
+                          {"hit_rate", c.tile_lookups > 0 ? nlohmann::ordered_json(hit_rate) : nlohmann::ordered_json()},
+                          {"bytes_read", c.bytes_read},     {"cache_bytes", c.cache_bytes},
+                          {"cache_limit_bytes", c.cache_limit_bytes}, {"files", c.files},
+                          {"file_io_s", c.file_io_s}};
+  }
+  return j;
+}
 
 nlohmann::ordered_json report_header(const Scene& scene, const Accelerator& accel) {
   nlohmann::ordered_json j;
@@ -11,6 +41,7 @@ nlohmann::ordered_json report_header(const Scene& scene, const Accelerator& acce
   j["kappa_version"] = version_string();
   j["scene"] = scene.source.string();
   j["load_s"] = scene.load_s;
+  j["images"] = images_section(scene);
   j["accel"] = std::string(accel.name());
   j["accel_choice"] = nullptr;  // how --accel auto chose, in a render that asked for it
   j["grid_choice"] = nullptr;   // how --grid-res model chose, in a render that asked for it
@@ -24,9 +55,11 @@ void add_stats_block(nlohmann::ordered_json& report, bool per_cell, std::optiona
   if (!note.empty()) report["stats_note"] = note;
 }
 
-nlohmann::ordered_json any_accel_class_section(std::uint64_t rays, std::uint64_t hits, double seconds) {
+nlohmann::ordered_json any_accel_class_section(std::uint64_t rays, std::uint64_t hits, double seconds,
+                                               std::uint64_t alpha_tests) {
   return {{"count", rays},
           {"hit_fraction", rays > 0 ? nlohmann::ordered_json(double(hits) / double(rays)) : nlohmann::ordered_json()},
+          {"alpha_tests", alpha_tests},
           {"time_s", seconds}};
 }
 

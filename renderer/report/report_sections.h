@@ -14,6 +14,11 @@
 
 namespace kappa {
 
+/// The scene's images: texture maps, cut-out masks, the environment image,
+/// the texture cache's statistics (OpenImageIO's own) and whether the
+/// OpenImageIO module was loaded at all.
+nlohmann::ordered_json images_section(const Scene& scene);
+
 /// schema_version, kappa_version, scene and accel: the keys every report starts with.
 nlohmann::ordered_json report_header(const Scene& scene, const Accelerator& accel);
 
@@ -24,6 +29,8 @@ void add_stats_block(nlohmann::ordered_json& report, bool per_cell, std::optiona
 
 /// One class of rays through an accelerator without cell counters: count,
 /// hit_fraction (null without rays) and time_s.
-nlohmann::ordered_json any_accel_class_section(std::uint64_t rays, std::uint64_t hits, double seconds);
+/// `alpha_tests`: the cut-out lookups of the class's queries (0 without cut-outs).
+nlohmann::ordered_json any_accel_class_section(std::uint64_t rays, std::uint64_t hits, double seconds,
+                                               std::uint64_t alpha_tests = 0);
 
 }  // namespace kappa

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/vec3.h"
+#include "renderer/scene/texture_map.h"
 
 namespace kappa {
 
@@ -24,13 +25,30 @@ struct Material {
   float ior = 1.5f;                    ///< index of refraction inside (outside 1), > 0
   float transmission = 0;              ///< in [0, 1]: the dielectric's share that is glass
   Vec3f transmission_tint{1, 1, 1};    ///< multiplies refracted light (MTL Tf), in [0, 1]
-  /// In [0, 1] (MTL d, 1 - Tr): read and kept; cut-outs are the textures issue's.
+  /// In [0, 1] (MTL d, 1 - Tr). Cut-outs are binary (glTF's MASK rule): a
+  /// surface of opacity below 0.5 is skipped by every ray, at or above it is
+  /// opaque; an opacity map decides per point (CutoutFilter).
   float opacity = 1;
+  /// The texture maps that replace parameters above (Scene::texture_maps).
+  MaterialMaps maps = kNoMaps;
+
+  bool has_map(MapSlot s) const { return maps[std::size_t(s)] >= 0; }
+  /// Some parameter other than opacity varies over the surface.
+  bool textured() const {
+    for (std::size_t s = 0; s < kMapSlots; ++s)
+      if (s != std::size_t(MapSlot::opacity) && maps[s] >= 0) return true;
+    return false;
+  }
+  /// Rays may pass through it: an opacity map, or a constant opacity below 0.5.
+  bool cut_out() const { return has_map(MapSlot::opacity) || opacity < 0.5f; }
 
   bool emissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
-  /// Exactly today's Lambertian reflector (albedo / pi): the all-Lambertian
-  /// frame (path_variant.h) renders it with its own code.
-  bool lambertian() const { return specular == 0 && metallic == 0 && transmission == 0; }
+  /// Exactly today's Lambertian reflector (albedo / pi), the same everywhere
+  /// and opaque: the all-Lambertian frame (path_variant.h) renders it with
+  /// its own code.
+  bool lambertian() const {
+    return specular == 0 && metallic == 0 && transmission == 0 && !textured() && !cut_out();
+  }
   /// Some light passes through (the glass part has weight): the surface has
   /// an inside and an outside; otherwise it reflects alike on both sides.
   bool refracts() const { return transmission > 0 && metallic < 1; }

@@ -12,6 +12,12 @@ bool Scene::has_materials() const {
   return false;
 }
 
+bool Scene::has_cutouts() const {
+  for (const Material& m : materials)
+    if (m.cut_out()) return true;
+  return false;
+}
+
 Bounds3f Scene::bounds() const {
   Bounds3f b;
   for (const Triangle& t : triangles) {

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "core/vec2.h"
 #include "core/vec3.h"
 #include "renderer/scene/material.h"
+#include "renderer/scene/texture_map.h"
 
 namespace kappa {
 
@@ -28,6 +30,12 @@ struct TriangleNormals {
 /// the file gives none, pbrt's (0, 0), (1, 0), (1, 1).
 struct TriangleUVs {
   Vec2f uv[3] = {{0, 0}, {1, 0}, {1, 1}};
+};
+
+/// An environment image's texels: linear RGB radiance, row 0 straight up.
+struct EnvironmentImage {
+  int width = 0, height = 0;
+  std::vector<float> rgb;  ///< 3 floats a texel, row by row
 };
 
 struct CameraSpec {
@@ -51,9 +59,18 @@ struct Scene {
   /// Per triangle, once any mesh gave texture coordinates (else empty).
   std::vector<TriangleUVs> uvs;
   std::vector<Material> materials;
+  /// The texture maps materials name (Material::maps indexes them).
+  std::vector<TextureMap> texture_maps;
+  /// The opacity maps' texels, for the cut-out test (TextureMap::mask).
+  std::vector<OpacityMask> opacity_masks;
   CameraSpec camera;
   bool camera_framed = false;  ///< the camera frames the bounds (no camera given): re-frame if the film changes
-  Vec3f environment{0, 0, 0};  ///< constant radiance of rays that escape
+  Vec3f environment{0, 0, 0};  ///< constant radiance of rays that escape (an image's mean, with one)
+  /// A latitude-longitude environment image (scene.json "environment": FILE),
+  /// read by load_scene_images; empty for a constant environment.
+  std::filesystem::path environment_file;
+  float environment_rotation_deg = 0;  ///< about +y, counter-clockwise seen from above
+  std::shared_ptr<const EnvironmentImage> environment_image;
   int width = 512;
   int height = 512;
   /// Seconds load_scene took to read, check and parse the files (reported
@@ -64,6 +81,9 @@ struct Scene {
   /// Some material is not Material::lambertian(): the frame runs the general
   /// BSDF and counts bounce rays by lobe.
   bool has_materials() const;
+  /// Some material is cut out somewhere (Material::cut_out): queries take
+  /// the cut-out filter, and Embree needs its callback (AccelOptions::filtered).
+  bool has_cutouts() const;
 };
 
 /// Camera framing a bounding box from the front (+z) and slightly above, far

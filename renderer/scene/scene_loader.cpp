@@ -9,8 +9,10 @@
 #include <sstream>
 
 #include "renderer/scene/json_scan.h"
+#include "renderer/scene/scene_images.h"
 #include "renderer/scene/obj/obj_limits.h"
 #include "renderer/scene/mesh_file.h"
+#include "renderer/scene/scene_images.h"
 
 namespace kappa {
 namespace {
@@ -120,7 +122,7 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings, Tas
   const json root = parse_json(file, text);
   const FieldReader field(file);
   if (!root.is_object()) fail(file, 0, "the scene must be a JSON object");
-  field.unknown_keys(root, {"meshes", "camera", "environment", "film"}, "", warnings);
+  field.unknown_keys(root, {"meshes", "camera", "environment", "environment_rotation_deg", "film"}, "", warnings);
 
   Scene scene;
   scene.source = file;
@@ -151,7 +153,27 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings, Tas
         float(field.number(cam["vfov_deg"], "camera.vfov_deg", 0.0, 180.0, "a number of degrees in (0, 180)"));
     has_camera = true;
   }
-  if (root.contains("environment")) scene.environment = field.vec3(root["environment"], "environment", true);
+  if (root.contains("environment")) {
+    const json& env = root["environment"];
+    if (env.is_string()) {
+      // A latitude-longitude image (renderer/render/environment_map.h), read
+      // by load_scene_images; the constant is its mean until then.
+      if (env.get<std::string>().empty()) field.bad("environment", "[r, g, b] or an image file name");
+      scene.environment_file = file.parent_path() / env.get<std::string>();
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(scene.environment_file, ec))
+        fail(file, 0, "environment image '" + scene.environment_file.string() + "' not found or not a regular file");
+      scene.inputs.push_back(scene.environment_file);
+    } else {
+      scene.environment = field.vec3(env, "environment", true);
+    }
+  }
+  if (root.contains("environment_rotation_deg")) {
+    scene.environment_rotation_deg = float(field.number(root["environment_rotation_deg"], "environment_rotation_deg",
+                                                        -360.0, 360.0, "a number of degrees in [-360, 360]"));
+    if (scene.environment_file.empty())
+      warnings.push_back(located(file, 0, "environment_rotation_deg ignored: the environment is not an image"));
+  }
   if (root.contains("film")) {
     const json& film = root["film"];
     if (!film.is_object()) field.bad("film", "an object {width, height}");
@@ -230,6 +252,9 @@ Scene load_scene(const std::filesystem::path& file, Warnings& warnings, TaskProg
   if (scene.triangles.empty()) fail(file, 0, "the scene has no triangles: nothing to render");
   if (scene.triangles.size() >= std::size_t(kNoTriangle))
     fail(file, 0, "more than 2^32 - 1 triangles; Kappa uses 32-bit triangle ids");
+  // Texture maps and the environment image: only a scene that names one
+  // loads the OpenImageIO module.
+  load_scene_images(scene, pending);
   warnings.insert(warnings.end(), pending.begin(), pending.end());
   scene.load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return scene;

@@ -1,9 +1,11 @@
 #include "renderer/scene/obj/mtl_material.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
+#include "renderer/scene/obj/mtl_texture.h"
 #include "renderer/scene/obj/obj_scan.h"
 
 namespace kappa {
@@ -18,8 +20,6 @@ const std::map<std::string, std::string>& not_modelled() {
       {"aniso", "anisotropic roughness is not modelled"},
       {"anisor", "anisotropic roughness is not modelled"},
       {"sharpness", "reflection-map sharpness is not modelled"},
-      {"refl", "reflection maps are not modelled"},
-      {"map_refl", "reflection maps are not modelled"},
       {"bump", "bump and normal maps are not modelled"},
       {"map_bump", "bump and normal maps are not modelled"},
       {"map_Bump", "bump and normal maps are not modelled"},
@@ -30,6 +30,7 @@ const std::map<std::string, std::string>& not_modelled() {
       {"decal", "decals are not modelled"},
       {"map_decal", "decals are not modelled"},
       {"map_Ka", "ambient light is not modelled"},
+      {"map_Ke", "emission maps are not modelled yet: Ke's constant emits"},
       {"Km", "bump multipliers are not modelled"},
   };
   return reasons;
@@ -143,7 +144,7 @@ std::vector<MtlRecord> read_mtl_records(const std::filesystem::path& file, const
     if (body.empty()) continue;
     const auto tokens = split_ws(body);
     if (tokens.empty()) continue;  // blanks split_ws knows (vertical tab, form feed) and nothing else
-    MtlStatement s{line_no, std::string(tokens[0]), {}};
+    MtlStatement s{line_no, std::string(tokens[0]), {}, trimmed(std::string_view(body).substr(tokens[0].size()))};
     for (std::size_t i = 1; i < tokens.size(); ++i) s.args.emplace_back(tokens[i]);
     if (s.keyword == "newmtl") {
       // The name is the rest of the line (names with spaces exist in the wild).
@@ -169,7 +170,7 @@ std::vector<MtlRecord> read_mtl_records(const std::filesystem::path& file, const
 }
 
 Material material_from_mtl(const MtlRecord& record, const std::filesystem::path& file, Warnings& warnings,
-                           std::set<std::string>& warned) {
+                           std::set<std::string>& warned, std::vector<TextureMap>& maps) {
   const Fields f(record, file, warnings, warned);
   Material m;
   m.name = record.name;
@@ -179,8 +180,10 @@ Material material_from_mtl(const MtlRecord& record, const std::filesystem::path&
     const auto reason = not_modelled().find(s.keyword);
     if (reason != not_modelled().end()) {
       f.warn_once(s.keyword, s.line, s.keyword + " ignored (" + reason->second + ")");
+    } else if (map_slot(s.keyword)) {
+      // read below
     } else if (s.keyword.rfind("map_", 0) == 0) {
-      f.warn_once(s.keyword, s.line, s.keyword + " ignored (texture maps are not read yet)");
+      f.warn_once(s.keyword, s.line, s.keyword + " ignored (not a texture map Kappa reads)");
     } else if (!read_here(s.keyword)) {
       f.warn_once(s.keyword, s.line, s.keyword + " ignored (not an MTL keyword Kappa knows)");
     }
@@ -273,11 +276,35 @@ Material material_from_mtl(const MtlRecord& record, const std::filesystem::path&
   } else if (const MtlStatement* s = f.get("Tr")) {
     m.opacity = 1.0f - f.scalar(*s, 0.0, 1.0, "[0, 1]");
   }
-  if (m.opacity < 1.0f) {
+  if (m.opacity < 1.0f && !f.get("map_d")) {
+    // Cut-outs are binary (Material::cut_out): say what the surface becomes.
     const MtlStatement* s = f.get("d") ? f.get("d") : f.get("Tr");
     f.warn_once("opacity", s->line,
-                s->keyword + " " + s->args[0] + ": partial opacity is not applied yet (cut-outs come with textures); "
-                "the surface renders opaque" + std::string(transparency ? " glass" : ""));
+                s->keyword + " " + s->args[0] + ": partial opacity is not blended; cut-outs are binary (glTF's MASK "
+                "rule), so the surface is " + (m.opacity < 0.5f ? "invisible (opacity below 0.5)" :
+                                               "opaque (opacity 0.5 or more)"));
+  }
+
+  // Texture maps: the keyword that wins its slot (map_Pr over map_Ns, map_Pm
+  // over map_refl over refl, as the PBR extension's scalars win theirs), its
+  // last statement as for every keyword; the others are warned about.
+  auto rank = [](const std::string& k) { return k == "map_Pr" || k == "map_Pm" ? 0 : k == "map_refl" ? 1 : 2; };
+  std::array<const MtlStatement*, kMapSlots> chosen{};
+  for (const MtlStatement& s : record.statements) {
+    const auto slot = map_slot(s.keyword);
+    if (!slot) continue;
+    const MtlStatement*& c = chosen[std::size_t(*slot)];
+    if (!c || rank(s.keyword) <= rank(c->keyword)) {
+      if (c) f.warn(c->line, "material '" + record.name + "': " + c->keyword + " ignored (" + s.keyword + " drives the same parameter)");
+      c = &s;
+    } else {
+      f.warn(s.line, "material '" + record.name + "': " + s.keyword + " ignored (" + c->keyword + " drives the same parameter)");
+    }
+  }
+  for (std::size_t slot = 0; slot < kMapSlots; ++slot) {
+    if (!chosen[slot]) continue;
+    maps.push_back(texture_from_mtl(*chosen[slot], MapSlot(slot), file, warnings, warned));
+    m.maps[slot] = std::int32_t(maps.size() - 1);
   }
   return m;
 }

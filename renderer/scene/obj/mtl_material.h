@@ -17,22 +17,10 @@
 
 #include "core/error.h"
 #include "renderer/scene/material.h"
+#include "renderer/scene/obj/mtl_record.h"
+#include "renderer/scene/texture_map.h"
 
 namespace kappa {
-
-/// One statement of a material: its keyword and the words after it.
-struct MtlStatement {
-  std::size_t line = 0;
-  std::string keyword;
-  std::vector<std::string> args;
-};
-
-/// A `newmtl` block: the material's name and its statements, in order.
-struct MtlRecord {
-  std::string name;
-  std::size_t line = 0;
-  std::vector<MtlStatement> statements;
-};
 
 /// The materials of an MTL file's checked text (scan_mtl), in file order.
 /// A name defined twice keeps its first definition (as Blender and
@@ -45,7 +33,9 @@ std::vector<MtlRecord> read_mtl_records(const std::filesystem::path& file, const
 /// 0-10, an IOR <= 0); clamps others with a warning; warns once per file
 /// (`warned`, the keywords already warned about in `file`) about every
 /// keyword it does not model.
+/// Texture maps (mtl_texture.h) are appended to `maps`, the material's
+/// Material::maps indexing them.
 Material material_from_mtl(const MtlRecord& record, const std::filesystem::path& file, Warnings& warnings,
-                           std::set<std::string>& warned);
+                           std::set<std::string>& warned, std::vector<TextureMap>& maps);
 
 }  // namespace kappa

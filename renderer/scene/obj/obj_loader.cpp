@@ -174,7 +174,9 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
     const auto r = records.find(m.name);
     Material mat;
     if (r != records.end()) {
-      mat = material_from_mtl(r->second.first, r->second.second, warnings, warned[r->second.second]);
+      mat = material_from_mtl(r->second.first, r->second.second, warnings, warned[r->second.second], scene.texture_maps);
+      for (std::int32_t k : mat.maps)
+        if (k >= 0) scene.inputs.push_back(scene.texture_maps[std::size_t(k)].file);
     } else {
       mat.name = m.name;
       mat.albedo = checked_colour(m.diffuse, m.name, "Kd", 1.0f, obj, warnings);

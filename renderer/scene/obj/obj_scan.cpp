@@ -55,7 +55,9 @@ class Scanner {
 
   ObjScan run(const std::string& bytes) {
     check_encoding(bytes);
-    m_total_vertices = count_vertex_statements(bytes);
+    m_total_vertices = count_statements(bytes, "v");
+    m_total_uvs = count_statements(bytes, "vt");
+    m_total_normals = count_statements(bytes, "vn");
     std::size_t line_no = 0;
     // A UTF-8 byte-order mark is not part of the first statement.
     std::size_t start = bytes.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
@@ -104,14 +106,17 @@ class Scanner {
     }
   }
 
-  static long long count_vertex_statements(const std::string& bytes) {
+  /// Statements of `key` (v, vt, vn) in the whole file.
+  static long long count_statements(const std::string& bytes, std::string_view key) {
     long long n = 0;
     std::size_t start = 0;
     while (start < bytes.size()) {
       std::size_t i = start;
       while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t')) ++i;
       if (start == 0 && bytes.rfind("\xEF\xBB\xBF", 0) == 0) i += 3;
-      if (i + 1 < bytes.size() && bytes[i] == 'v' && (bytes[i + 1] == ' ' || bytes[i + 1] == '\t')) ++n;
+      const std::size_t after = i + key.size();
+      if (after < bytes.size() && bytes.compare(i, key.size(), key) == 0 && (bytes[after] == ' ' || bytes[after] == '\t'))
+        ++n;
       const std::size_t end = bytes.find('\n', start);
       if (end == std::string::npos) break;
       start = end + 1;
@@ -187,7 +192,23 @@ class Scanner {
   bool scan_attribute(const std::vector<std::string_view>& tok, std::size_t line_no) {
     if (tok.size() < 2) fail(m_file, line_no, std::string(tok[0]) + " without values");
     for (std::size_t i = 1; i < tok.size(); ++i) coordinate(tok[i], line_no, "value");
+    ++(tok[0] == "vt" ? m_defined_uvs : m_defined_normals);
     return true;
+  }
+
+  /// A face's vt or vn index: refused when it names nothing (tinyobjloader
+  /// would drop it without a word, and the texture coordinates with it).
+  void check_attribute_index(long long index, const char* what, long long defined, long long total,
+                             std::size_t line_no) {
+    if (index == 0) fail(m_file, line_no, std::string("face ") + what + " index 0 is invalid (OBJ indices start at 1)");
+    if (index < 0 && -index > defined)
+      fail(m_file, line_no,
+           std::string("relative face ") + what + " index " + std::to_string(index) + " points before the first " +
+               what + " (" + std::to_string(defined) + " defined so far)");
+    if (index > total)
+      fail(m_file, line_no,
+           std::string("face ") + what + " index " + std::to_string(index) + " is out of range (the file has " +
+               std::to_string(total) + " " + what + ")");
   }
 
   bool scan_face(const std::vector<std::string_view>& tok, std::size_t line_no) {
@@ -201,14 +222,18 @@ class Scanner {
       if (!parse_integer(pos, index))
         fail(m_file, line_no, "face index " + excerpt(pos) + " is not an integer");
       if (slash != std::string_view::npos) {
-        // Texture and normal indices are not used, but must be well-formed.
+        // Texture and normal indices must be well-formed and name one.
         std::string_view rest = ref.substr(slash + 1);
         for (std::size_t k = 0; k < 2 && !rest.empty(); ++k) {
           const std::size_t s = rest.find('/');
           const std::string_view part = rest.substr(0, s);
-          long long ignored = 0;
-          if (!part.empty() && !parse_integer(part, ignored))
+          long long attribute = 0;
+          if (!part.empty() && !parse_integer(part, attribute))
             fail(m_file, line_no, "face index " + excerpt(ref) + " is not of the form v, v/vt, v//vn or v/vt/vn");
+          if (!part.empty()) {
+            if (k == 0) check_attribute_index(attribute, "vt", m_defined_uvs, m_total_uvs, line_no);
+            else check_attribute_index(attribute, "vn", m_defined_normals, m_total_normals, line_no);
+          }
           if (s == std::string_view::npos) break;
           rest = rest.substr(s + 1);
         }
@@ -246,6 +271,8 @@ class Scanner {
   TaskProgress* m_progress;
   ObjScan m_scan;
   long long m_total_vertices = 0;  ///< `v` statements in the whole file
+  long long m_total_uvs = 0, m_total_normals = 0;      ///< `vt`, `vn` statements in the whole file
+  long long m_defined_uvs = 0, m_defined_normals = 0;  ///< of them, seen so far
   WarningTally m_short_faces, m_unknown, m_non_faces;
 };
 

@@ -180,7 +180,7 @@ Scene material_scene(const std::string& folder, int width, int height) {
 }
 
 TEST(MaterialRender, MaterialScenesAreBitwiseAlikeUnderEveryExactAcceleratorAndThreadCount) {
-  for (const char* folder : {"material-box", "veach-mis"}) {
+  for (const char* folder : {"material-box", "veach-mis", "textured-box"}) {
     const Scene scene = material_scene(folder, 32, 24);
     RenderSettings settings;
     settings.spp = 4;

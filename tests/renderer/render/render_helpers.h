@@ -12,7 +12,9 @@
 namespace kappa::test {
 
 inline Film render_scene(const Scene& scene, const RenderSettings& settings, const std::string& accel = "naive") {
-  const auto a = make_accelerator(accel, scene.triangles);
+  AccelOptions options;
+  options.filtered = scene.has_cutouts();
+  const auto a = make_accelerator(accel, scene.triangles, options);
   Film film(scene.width, scene.height, settings.aov);
   render(scene, *a, settings, film);
   return film;

@@ -130,8 +130,19 @@ TEST(ReportKeys, EveryDocumentedKeyIsInTheReports) {
   const nlohmann::json grid2_render = report_of({"render", scene, "--accel", "grid2", "--spp", "1", "--width", "16",
                                                  "--height", "16", "--out", (tmp / "g.exr").string()});
   const nlohmann::json grid2_lines = report_of({"cast", scene, "--accel", "grid2", "--rays", "lines", "--n", "2000"});
+  // Textures, cut-outs and an environment image: the images section filled.
+  test::write_file(tmp / "sky.json",
+                   nlohmann::json{{"meshes", {(test::assets_dir() / "textured-box" / "textured_box.obj").string()}},
+                                  {"environment", (test::assets_dir() / "sky" / "sky.hdr").string()},
+                                  {"environment_rotation_deg", 30}}
+                       .dump());
+  const nlohmann::json textured = report_of({"render", (tmp / "sky.json").string(), "--spp", "1", "--width", "16",
+                                             "--height", "16", "--out", (tmp / "t.exr").string()});
+  ASSERT_TRUE(textured.at("images").at("environment_image").is_object());
+  ASSERT_TRUE(textured.at("images").at("texture_cache").is_object());
   std::set<std::string> seen;
-  for (const auto* j : {&render, &budgeted, &chosen, &lines, &segments, &sampled, &grid2_render, &grid2_lines})
+  for (const auto* j :
+       {&render, &budgeted, &chosen, &lines, &segments, &sampled, &grid2_render, &grid2_lines, &textured})
     collect(*j, seen);
   for (const auto& key : documented.all) EXPECT_TRUE(seen.count(key)) << key << " is documented but in no report";
   // Top-level keys: in a render's report and in a cast's (render is null in a

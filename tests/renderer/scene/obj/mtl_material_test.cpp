@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "core/error.h"
@@ -19,7 +21,8 @@ Material material(const std::string& mtl, Warnings& w) {
   const std::vector<MtlRecord> records = read_mtl_records("m.mtl", mtl, w);
   std::set<std::string> warned;
   EXPECT_FALSE(records.empty());
-  return material_from_mtl(records.at(0), "m.mtl", w, warned);
+  std::vector<TextureMap> maps;
+  return material_from_mtl(records.at(0), "m.mtl", w, warned, maps);
 }
 
 Material material(const std::string& mtl) {
@@ -148,7 +151,12 @@ TEST(MtlMaterial, OpacityIsDOrOneMinusTrKeptAndWarned) {
   EXPECT_FLOAT_EQ(material("newmtl a\nd 1\n").opacity, 1.0f);
   Warnings w;
   EXPECT_FLOAT_EQ(material("newmtl a\nd 0.25\n", w).opacity, 0.25f);
-  EXPECT_TRUE(any_contains(w, "m.mtl:2: d 0.25: partial opacity is not applied yet"));
+  EXPECT_TRUE(any_contains(w, "m.mtl:2: d 0.25: partial opacity is not blended; cut-outs are binary"));
+  EXPECT_TRUE(any_contains(w, "the surface is invisible (opacity below 0.5)"));
+  EXPECT_TRUE(material("newmtl a\nd 0.25\n").cut_out());
+  Warnings half;
+  EXPECT_FALSE(material("newmtl a\nd 0.5\n", half).cut_out());
+  EXPECT_TRUE(any_contains(half, "the surface is opaque (opacity 0.5 or more)"));
   EXPECT_FLOAT_EQ(material("newmtl a\nTr 0.25\n").opacity, 0.75f);
   Warnings both;
   EXPECT_FLOAT_EQ(material("newmtl a\nd 1\nTr 0.5\n", both).opacity, 1.0f);
@@ -177,8 +185,8 @@ TEST(MtlMaterial, AmbientIsIgnoredWithAWarningUnlessMetallic) {
 }
 
 TEST(MtlMaterial, EveryKeywordNotModelledIsWarnedOncePerFileWithItsLine) {
-  const char* keys[] = {"map_Kd tex.png", "map_Ks s.png", "bump b.png", "norm n.png", "disp d.png", "decal c.png",
-                        "refl -type sphere r.png", "Ps 0.5", "Pc 0.5", "Pcr 0.1", "aniso 0.2", "anisor 0.1",
+  const char* keys[] = {"map_Ke e.png", "map_Ka a.png", "map_Ps p.png", "bump b.png", "norm n.png", "disp d.png",
+                        "decal c.png", "Ps 0.5", "Pc 0.5", "Pcr 0.1", "aniso 0.2", "anisor 0.1",
                         "sharpness 60", "Km 1", "frobnicate 3"};
   for (const char* k : keys) {
     const std::string keyword = std::string(k).substr(0, std::string(k).find(' '));
@@ -186,7 +194,8 @@ TEST(MtlMaterial, EveryKeywordNotModelledIsWarnedOncePerFileWithItsLine) {
     const std::vector<MtlRecord> records =
         read_mtl_records("m.mtl", std::string("newmtl a\n") + k + "\nnewmtl b\n" + k + "\n", w);
     std::set<std::string> warned;
-    for (const MtlRecord& r : records) material_from_mtl(r, "m.mtl", w, warned);
+    std::vector<TextureMap> maps;
+    for (const MtlRecord& r : records) material_from_mtl(r, "m.mtl", w, warned, maps);
     ASSERT_EQ(w.size(), 1u) << k;  // once per file, though two materials have it
     EXPECT_EQ(w[0].rfind("m.mtl:2: " + keyword + " ignored (", 0), 0u) << w[0];
   }
@@ -197,7 +206,8 @@ TEST(MtlMaterial, ASecondDefinitionIsWarnedAndTheFirstKept) {
   const std::vector<MtlRecord> r = read_mtl_records("m.mtl", "newmtl a\nKd 1 0 0\nnewmtl a\nKd 0 1 0\n", w);
   ASSERT_EQ(r.size(), 1u);
   std::set<std::string> warned;
-  EXPECT_EQ(material_from_mtl(r[0], "m.mtl", w, warned).albedo, (Vec3f{1, 0, 0}));
+  std::vector<TextureMap> maps;
+  EXPECT_EQ(material_from_mtl(r[0], "m.mtl", w, warned, maps).albedo, (Vec3f{1, 0, 0}));
   EXPECT_TRUE(any_contains(w, "m.mtl:3: material 'a' is defined again"));
 }
 
@@ -209,7 +219,8 @@ TEST(MtlMaterial, NumbersThatAreNotNumbersAreRefusedWithTheirLine) {
 TEST(MtlMaterial, TheObjLoaderReadsMaterialsThroughTheMapping) {
   test::TempDir dir;
   test::write_file(dir / "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl glass\nf 1 2 3\n");
-  test::write_file(dir / "m.mtl", "newmtl glass\nKs 1 1 1\nNs 1000\nNi 1.5\nillum 7\nmap_Kd x.png\n");
+  test::write_file(dir / "m.mtl", "newmtl glass\nKs 1 1 1\nNs 1000\nNi 1.5\nillum 7\nmap_Ke x.png\nmap_Kd x.png\n");
+  test::write_file(dir / "x.png", "not read by load_obj");
   Scene scene;
   Warnings w;
   load_obj(dir / "m.obj", scene, w);
@@ -220,7 +231,12 @@ TEST(MtlMaterial, TheObjLoaderReadsMaterialsThroughTheMapping) {
   EXPECT_EQ(m.metallic, 0.0f);  // glass, not Blender's metal of illum 7 without Ka
   EXPECT_FALSE(m.lambertian());
   ASSERT_EQ(w.size(), 1u);
-  EXPECT_NE(w[0].find("m.mtl:6: map_Kd ignored"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("m.mtl:6: map_Ke ignored"), std::string::npos) << w[0];
+  // The map is the scene's, and its file an input no output may replace.
+  ASSERT_EQ(scene.texture_maps.size(), 1u);
+  EXPECT_EQ(scene.texture_maps[0].file, dir / "x.png");
+  EXPECT_EQ(m.maps[std::size_t(MapSlot::base_color)], 0);
+  EXPECT_EQ(std::count(scene.inputs.begin(), scene.inputs.end(), dir / "x.png"), 1);
 }
 
 }  // namespace

@@ -1,0 +1,69 @@
+// Texture maps looked up at a shading point (the general path variant's
+// vertices only: a scene without maps never calls here): the maps' texels
+// through OpenImageIO's TextureSystem, filtered over the footprint the
+// camera ray's differentials give (uv_footprint.h), decoded from sRGB where
+// Blender decodes (8- and 16-bit files), then clamped to what the BSDF
+// accepts. Colour to scalar is the luminance, Blender's implicit conversion.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/vec2.h"
+#include "renderer/bsdf/principled.h"
+#include "renderer/scene/scene.h"
+#include "renderer/image/image_library.h"
+
+namespace kappa {
+
+/// How far the lookup point moves in (u, v) per pixel: zero for a point
+/// lookup (the finest level, bilinear).
+struct UvFootprint {
+  float dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;
+};
+
+/// The sRGB transfer function undone (IEC 61966-2-1).
+inline float srgb_to_linear(float c) {
+  return c <= 0.04045f ? c * (1.0f / 12.92f) : std::pow((c + 0.055f) * (1.0f / 1.055f), 2.4f);
+}
+
+/// A texel value the BSDF can use: NaN and negatives (warned about at load) 0.
+inline float usable(float v, float hi) { return v > 0.0f ? std::min(v, hi) : 0.0f; }
+
+/// The map's colour at (u, v): RGB, a grey file's one channel repeated.
+inline Vec3f lookup_colour(const TextureMap& map, Vec2f uv, const UvFootprint& fp, float hi) {
+  TextureCoords at;
+  at.s = uv.u * map.scale.u + map.offset.u;
+  at.t = 1.0f - (uv.v * map.scale.v + map.offset.v);  // v runs up, the image's rows down
+  at.dsdx = fp.dudx * map.scale.u;
+  at.dsdy = fp.dudy * map.scale.u;
+  at.dtdx = -fp.dvdx * map.scale.v;
+  at.dtdy = -fp.dvdy * map.scale.v;
+  float c[3] = {0, 0, 0};
+  const int count = map.channels >= 3 ? 3 : 1;
+  image_library().lookup(map.handle, TextureWrap::periodic, TextureFilter::filtered, 0, count, at, c);
+  if (count == 1) c[1] = c[2] = c[0];
+  for (float& v : c) v = usable(map.srgb ? srgb_to_linear(v) : v, hi);
+  return {c[0], c[1], c[2]};
+}
+
+/// A scalar map: the luminance of its colour (the value of a grey file).
+inline float lookup_scalar(const TextureMap& map, Vec2f uv, const UvFootprint& fp) {
+  const Vec3f c = lookup_colour(map, uv, fp, 1.0f);
+  return usable(0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z, 1.0f);
+}
+
+/// `p` (the material's constants) with its maps' values where it has maps.
+inline void apply_texture_maps(const Scene& scene, const Material& m, Vec2f uv, const UvFootprint& fp,
+                               bsdf::PrincipledParams& p) {
+  auto map = [&](MapSlot s) -> const TextureMap* {
+    const std::int32_t k = m.maps[std::size_t(s)];
+    return k >= 0 ? &scene.texture_maps[std::size_t(k)] : nullptr;
+  };
+  if (const TextureMap* t = map(MapSlot::base_color)) p.base = lookup_colour(*t, uv, fp, 1.0f);
+  if (const TextureMap* t = map(MapSlot::roughness)) p.roughness = lookup_scalar(*t, uv, fp);
+  if (const TextureMap* t = map(MapSlot::metallic)) p.metallic = lookup_scalar(*t, uv, fp);
+  if (const TextureMap* t = map(MapSlot::specular)) p.specular = lookup_scalar(*t, uv, fp);
+}
+
+}  // namespace kappa
