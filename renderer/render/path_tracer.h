@@ -123,10 +123,14 @@ class PathTracer {
 
       // Emission: one-sided, towards the geometric normal.
       if (mat.emissive() && cos_o > 0.0f) {
+        Vec3f Le = mat.emission;
+        if constexpr (V.surfaces == Surfaces::general) {
+          if (mat.has_map(MapSlot::emission)) Le = emitted(m_scene, mat, shading.uv);
+        }
         if (depth == 0 || !V.triangle_lights || prev_delta) {
           // Seen directly (or through delta lobes), or no emitter is a light:
           // BSDF sampling alone finds it and carries its whole weight.
-          L += beta * mat.emission;
+          L += beta * Le;
         } else {
           // An emitter too dim to be a light (pmf 0) is reached only by BSDF
           // sampling, which then carries its whole weight.
@@ -136,9 +140,9 @@ class PathTracer {
             KAPPA_DCHECK_LT(std::abs(dot(ray.d, ray.d) - 1.0f), 1e-5f);
             const float light_pdf =
                 pmf > 0.0f ? pmf * (hit->t * hit->t) / (cos_o * m_lights.area_of_triangle(hit->triangle)) : 0.0f;
-            L += beta * mat.emission * power_heuristic(prev_bsdf_pdf, light_pdf);
+            L += beta * Le * power_heuristic(prev_bsdf_pdf, light_pdf);
           } else if (pmf == 0.0f) {
-            L += beta * mat.emission;  // nee: a light only BSDF sampling finds
+            L += beta * Le;  // nee: a light only BSDF sampling finds
           }
         }
       }
@@ -300,7 +304,15 @@ class PathTracer {
       const float len = length(d);
       if (!(len > 0.0f)) return std::nullopt;
       if (occluded<V>(Ray{from, d / len, 0.0f, len * (1.0f - kShadowEpsilon)}, q)) return std::nullopt;
-      return LightSample{wi, m_scene.materials[m_scene.material_of[id]].emission, light_pdf, cos_s};
+      const Material& emitter = m_scene.materials[m_scene.material_of[id]];
+      Vec3f Le = emitter.emission;
+      if constexpr (V.surfaces == Surfaces::general) {
+        if (emitter.has_map(MapSlot::emission)) {
+          const TriangleUVs uvs = id < m_scene.uvs.size() ? m_scene.uvs[id] : TriangleUVs{};
+          Le = emitted(m_scene, emitter, uvs.uv[0] * b0 + uvs.uv[1] * b1 + uvs.uv[2] * b2);
+        }
+      }
+      return LightSample{wi, Le, light_pdf, cos_s};
     }
     return std::nullopt;
   }

@@ -42,7 +42,10 @@ struct Material {
   /// Rays may pass through it: an opacity map, or a constant opacity below 0.5.
   bool cut_out() const { return has_map(MapSlot::opacity) || opacity < 0.5f; }
 
-  bool emissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
+  /// It emits: a non-zero Ke, or an emission map (map_Ke replaces Ke, as in Blender).
+  bool emissive() const {
+    return emission.x > 0 || emission.y > 0 || emission.z > 0 || maps[std::size_t(MapSlot::emission)] >= 0;
+  }
   /// Exactly today's Lambertian reflector (albedo / pi), the same everywhere
   /// and opaque: the all-Lambertian frame (path_variant.h) renders it with
   /// its own code.

@@ -47,6 +47,26 @@ void check_texels(ImageLibrary& lib, const std::filesystem::path& file, const st
                                                 std::to_string(scan.negative) + " negative texel values: " + becomes));
 }
 
+/// The mean of a colour map's texels as lookups decode them (NaN and
+/// negatives 0): an emission map's power.
+Vec3f mean_colour(ImageLibrary& lib, const TextureMap& map, const ImageFacts& f) {
+  std::vector<float> texels;
+  try {
+    texels = lib.read(map.file.string(), 3);
+  } catch (const std::runtime_error& e) {
+    fail(map.declared_in, map.line, map.keyword + " '" + map.file.string() + "': " + e.what());
+  }
+  double sum[3] = {0, 0, 0};
+  const std::size_t n = texels.size() / 3;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) {
+      float v = texels[3 * i + std::size_t(f.channels >= 3 ? c : 0)];
+      if (!f.floating) v = v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+      sum[c] += v > 0.0f && std::isfinite(v) ? double(v) : 0.0;
+    }
+  return {float(sum[0] / double(n)), float(sum[1] / double(n)), float(sum[2] / double(n))};
+}
+
 void load_texture_maps(Scene& scene, ImageLibrary& lib, Warnings& warnings) {
   std::map<std::filesystem::path, ImageFacts> opened;  // a file named by several maps is checked once
   for (std::size_t k = 0; k < scene.texture_maps.size(); ++k) {
@@ -95,6 +115,7 @@ void load_texture_maps(Scene& scene, ImageLibrary& lib, Warnings& warnings) {
       scene.opacity_masks.push_back(std::move(mask));
       continue;
     }
+    if (map.slot == MapSlot::emission) map.mean = mean_colour(lib, map, f);
     map.handle = lib.texture(map.file.string());
   }
   // An opacity map that became no mask leaves its material opaque.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/vec2.h"
+#include "core/vec3.h"
 
 namespace kappa {
 
@@ -36,6 +37,9 @@ struct TextureMap {
   int first_channel = 0;     ///< the channel a scalar map reads (opacity: the alpha channel, if any)
   int channels = 0;          ///< the file's channel count
   std::int32_t mask = -1;    ///< an opacity map's index in Scene::opacity_masks
+  /// An emission map's mean radiance over its texels (decoded): what the
+  /// light's power is, for choosing it among the lights.
+  Vec3f mean{0, 0, 0};
 };
 
 /// An opacity map as the visibility queries test it (CutoutFilter): its

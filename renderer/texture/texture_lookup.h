@@ -66,4 +66,12 @@ inline void apply_texture_maps(const Scene& scene, const Material& m, Vec2f uv, 
   if (const TextureMap* t = map(MapSlot::specular)) p.specular = lookup_scalar(*t, uv, fp);
 }
 
+/// The radiance `m` emits at (u, v): its emission map's texel (decoded, not
+/// clipped: a float map may be brighter than 1), or Ke.
+inline Vec3f emitted(const Scene& scene, const Material& m, Vec2f uv) {
+  const std::int32_t k = m.maps[std::size_t(MapSlot::emission)];
+  if (k < 0) return m.emission;
+  return lookup_colour(scene.texture_maps[std::size_t(k)], uv, UvFootprint{}, INFINITY);
+}
+
 }  // namespace kappa

@@ -30,7 +30,6 @@ const std::map<std::string, std::string>& not_modelled() {
       {"decal", "decals are not modelled"},
       {"map_decal", "decals are not modelled"},
       {"map_Ka", "ambient light is not modelled"},
-      {"map_Ke", "emission maps are not modelled yet: Ke's constant emits"},
       {"Km", "bump multipliers are not modelled"},
   };
   return reasons;

@@ -41,6 +41,7 @@ std::optional<MapSlot> map_slot(const std::string& k) {
   if (k == "map_Ks") return MapSlot::specular;
   if (k == "map_Ns" || k == "map_Pr") return MapSlot::roughness;
   if (k == "map_Pm" || k == "map_refl" || k == "refl") return MapSlot::metallic;
+  if (k == "map_Ke") return MapSlot::emission;
   if (k == "map_d") return MapSlot::opacity;
   return std::nullopt;
 }

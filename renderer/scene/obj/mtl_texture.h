@@ -21,8 +21,7 @@ namespace kappa {
 
 /// The slot a map keyword drives, or none for a keyword that is not a map
 /// Kappa reads (map_Ns and map_Pr both drive roughness; map_refl, refl and
-/// map_Pm metallic, as in Blender). map_Ke is not read yet: emission maps
-/// would make lights vary over their triangles.
+/// map_Pm metallic, as in Blender).
 std::optional<MapSlot> map_slot(const std::string& keyword);
 
 /// The map `s` names in `mtl`. Throws InputError (file:line) for a statement

@@ -8,6 +8,8 @@
 #include <filesystem>
 
 #include "renderer/image/image_library.h"
+#include "renderer/render/lights.h"
+#include "renderer/scene/scene_loader.h"
 #include "renderer/texture/texture_lookup.h"
 #include "renderer/texture/uv_footprint.h"
 #include "test_util.h"
@@ -118,6 +120,39 @@ TEST(UvFootprint, APlaneWithUvFromXyMovesOneUnitOfUPerUnitOfX) {
   const UvFootprint none = uv_footprint(tri, flat, Vec3f{1, 0, 0}, Vec3f{0, 2, 0});
   EXPECT_EQ(none.dudx, 0.0f);
   EXPECT_EQ(none.dvdy, 0.0f);
+}
+
+}  // namespace
+}  // namespace kappa
+
+namespace kappa {
+namespace {
+
+/// map_Ke replaces Ke (Blender): the triangle is a light even with Ke 0, its
+/// power from the map's mean decoded texel, its radiance the texel at (u, v).
+TEST(EmissionMap, ReplacesKeAndMakesTheTriangleALightOfItsMeanPower) {
+  test::TempDir dir;
+  std::vector<std::uint8_t> pixels = {0, 64, 128, 255};  // 4 x 1, grey
+  image_library().write_8bit((dir / "glow.png").string(), 4, 1, 1, pixels);
+  test::write_file(dir / "q.obj",
+                   "mtllib q.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                   "usemtl glow\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
+  test::write_file(dir / "q.mtl", "newmtl glow\nKd 0 0 0\nKe 0 0 0\nmap_Ke glow.png\n");
+  Warnings w;
+  const Scene scene = load_scene(dir / "q.obj", w);
+  ASSERT_EQ(scene.texture_maps.size(), 1u);
+  const Material& m = scene.materials[scene.material_of[0]];
+  EXPECT_TRUE(m.emissive());
+  EXPECT_FALSE(m.lambertian());
+  double mean = 0;
+  for (std::uint8_t p : pixels) mean += srgb_to_linear(float(p) / 255.0f) / 4.0;
+  EXPECT_NEAR(scene.texture_maps[0].mean.x, mean, 1e-6);
+  const Lights lights(scene);
+  EXPECT_EQ(lights.triangle_count(), 2u);
+  for (int x = 0; x < 4; ++x)
+    EXPECT_NEAR(emitted(scene, m, Vec2f{(float(x) + 0.5f) / 4.0f, 0.5f}).y, srgb_to_linear(float(pixels[std::size_t(x)]) / 255.0f),
+                2e-5f)
+        << x;
 }
 
 }  // namespace

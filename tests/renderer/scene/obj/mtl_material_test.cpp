@@ -185,7 +185,7 @@ TEST(MtlMaterial, AmbientIsIgnoredWithAWarningUnlessMetallic) {
 }
 
 TEST(MtlMaterial, EveryKeywordNotModelledIsWarnedOncePerFileWithItsLine) {
-  const char* keys[] = {"map_Ke e.png", "map_Ka a.png", "map_Ps p.png", "bump b.png", "norm n.png", "disp d.png",
+  const char* keys[] = {"map_Bump e.png", "map_Ka a.png", "map_Ps p.png", "bump b.png", "norm n.png", "disp d.png",
                         "decal c.png", "Ps 0.5", "Pc 0.5", "Pcr 0.1", "aniso 0.2", "anisor 0.1",
                         "sharpness 60", "Km 1", "frobnicate 3"};
   for (const char* k : keys) {
@@ -219,7 +219,7 @@ TEST(MtlMaterial, NumbersThatAreNotNumbersAreRefusedWithTheirLine) {
 TEST(MtlMaterial, TheObjLoaderReadsMaterialsThroughTheMapping) {
   test::TempDir dir;
   test::write_file(dir / "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl glass\nf 1 2 3\n");
-  test::write_file(dir / "m.mtl", "newmtl glass\nKs 1 1 1\nNs 1000\nNi 1.5\nillum 7\nmap_Ke x.png\nmap_Kd x.png\n");
+  test::write_file(dir / "m.mtl", "newmtl glass\nKs 1 1 1\nNs 1000\nNi 1.5\nillum 7\nmap_Ka x.png\nmap_Kd x.png\n");
   test::write_file(dir / "x.png", "not read by load_obj");
   Scene scene;
   Warnings w;
@@ -231,7 +231,7 @@ TEST(MtlMaterial, TheObjLoaderReadsMaterialsThroughTheMapping) {
   EXPECT_EQ(m.metallic, 0.0f);  // glass, not Blender's metal of illum 7 without Ka
   EXPECT_FALSE(m.lambertian());
   ASSERT_EQ(w.size(), 1u);
-  EXPECT_NE(w[0].find("m.mtl:6: map_Ke ignored"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("m.mtl:6: map_Ka ignored"), std::string::npos) << w[0];
   // The map is the scene's, and its file an input no output may replace.
   ASSERT_EQ(scene.texture_maps.size(), 1u);
   EXPECT_EQ(scene.texture_maps[0].file, dir / "x.png");
