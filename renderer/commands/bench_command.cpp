@@ -51,6 +51,9 @@ int run_bench(const BenchOptions& options) {
   Warnings warnings;
   const Scene scene =
       with_progress(show_progress, [&](TaskProgress* progress) { return load_scene(options.scene, warnings, progress); });
+  // Its rays meet the triangles alone: a cut-out's holes are the renderer's (its any-hit filter).
+  if (scene.has_cutouts())
+    warnings.push_back(located(options.scene, 0, "cut-outs are not applied by kappa bench: its rays meet the triangles alone (kappa render applies them)"));
   print_warnings(warnings);
   refuse_outputs_over_inputs({options.json}, scene.inputs);
   const auto json_out = optional_output(options.json);

@@ -74,6 +74,9 @@ int run_sweep(const SweepOptions& options) {
   Warnings warnings;
   const Scene scene =
       with_progress(show_progress, [&](TaskProgress* progress) { return load_scene(options.scene, warnings, progress); });
+  // Its rays meet the triangles alone: a cut-out's holes are the renderer's (its any-hit filter).
+  if (scene.has_cutouts())
+    warnings.push_back(located(options.scene, 0, "cut-outs are not applied by kappa sweep: its rays meet the triangles alone (kappa render applies them)"));
   print_warnings(warnings);
 
   const std::filesystem::path calibration_path =

@@ -94,3 +94,22 @@ TEST(Preview, IsTheExrScaledClippedAndSrgbEncoded) {
 
 }  // namespace
 }  // namespace kappa
+
+namespace kappa {
+namespace {
+
+/// cast, bench and sweep cast rays against the triangles alone: on a scene
+/// with cut-outs they say so rather than measure other rays without a word.
+TEST(Cutouts, CastSaysItsRaysIgnoreTheCutOuts) {
+  test::TempDir tmp;
+  const auto r = test::run_kappa({"cast", (test::assets_dir() / "textured-box" / "scene.json").string(), "--rays",
+                                  "lines", "--n", "1000", "--report", (tmp / "c.json").string()});
+  EXPECT_EQ(r.exit_code, 0) << r.std_err;
+  EXPECT_NE(r.std_err.find("cut-outs are not applied by kappa cast"), std::string::npos) << r.std_err;
+  const auto plain = test::run_kappa({"cast", (test::assets_dir() / "cornell-box" / "scene.json").string(), "--rays",
+                                      "lines", "--n", "1000", "--report", (tmp / "d.json").string()});
+  EXPECT_EQ(plain.std_err.find("cut-outs"), std::string::npos) << plain.std_err;
+}
+
+}  // namespace
+}  // namespace kappa
