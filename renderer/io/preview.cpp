@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/input_error.h"
+#include "core/srgb.h"
 #include "renderer/image/image_library.h"
 
 namespace kappa {
@@ -27,12 +28,7 @@ void check_preview_name(const std::filesystem::path& file) {
     throw InputError("--preview: '" + file.string() + "' must end in .png, .jpg, .jpeg, .tif or .tiff");
 }
 
-std::uint8_t preview_byte(float linear, float scale) {
-  float c = linear * scale;
-  c = c > 0.0f ? std::min(c, 1.0f) : 0.0f;  // NaN too
-  const float encoded = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-  return std::uint8_t(std::lround(encoded * 255.0f));
-}
+std::uint8_t preview_byte(float linear, float scale) { return linear_to_srgb_byte(linear, scale); }
 
 void write_preview(AtomicOutput& out, const Film& film, float exposure) {
   const float scale = std::exp2(exposure);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/input_error.h"
+#include "core/srgb.h"
 #include "renderer/image/image_library.h"
 
 namespace kappa {
@@ -61,7 +62,7 @@ Vec3f mean_colour(ImageLibrary& lib, const TextureMap& map, const ImageFacts& f)
   for (std::size_t i = 0; i < n; ++i)
     for (int c = 0; c < 3; ++c) {
       float v = texels[3 * i + std::size_t(f.channels >= 3 ? c : 0)];
-      if (!f.floating) v = v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+      if (!f.floating) v = srgb_to_linear(v);
       sum[c] += v > 0.0f && std::isfinite(v) ? double(v) : 0.0;
     }
   return {float(sum[0] / double(n)), float(sum[1] / double(n)), float(sum[2] / double(n))};
@@ -150,7 +151,7 @@ void load_environment(Scene& scene, ImageLibrary& lib, Warnings& warnings) {
     warnings.push_back(located(scene.source, 0, what + " '" + file.string() + "' has " + std::to_string(unusable) +
                                                     " NaN, infinite or negative values: read as 0"));
   if (!f.floating)
-    for (float& v : texels) v = v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+    for (float& v : texels) v = srgb_to_linear(v);
   // A constant image is the constant environment: the same image bitwise,
   // and no importance sampling of a flat distribution.
   bool constant = true;

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/srgb.h"
 #include "core/vec2.h"
 #include "renderer/bsdf/principled.h"
 #include "renderer/scene/scene.h"
@@ -21,11 +22,6 @@ namespace kappa {
 struct UvFootprint {
   float dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;
 };
-
-/// The sRGB transfer function undone (IEC 61966-2-1).
-inline float srgb_to_linear(float c) {
-  return c <= 0.04045f ? c * (1.0f / 12.92f) : std::pow((c + 0.055f) * (1.0f / 1.055f), 2.4f);
-}
 
 /// A texel value the BSDF can use: NaN and negatives (warned about at load) 0.
 inline float usable(float v, float hi) { return v > 0.0f ? std::min(v, hi) : 0.0f; }

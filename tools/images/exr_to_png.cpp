@@ -10,19 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "core/srgb.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/exr_input.h"
 #include "renderer/io/png_output.h"
-
-namespace {
-
-std::uint8_t srgb_byte(float linear) {
-  const float c = std::clamp(linear, 0.0f, 1.0f);
-  const float encoded = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-  return std::uint8_t(std::lround(encoded * 255.0f));
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   if (argc != 3 && argc != 4) {
@@ -33,7 +24,7 @@ int main(int argc, char** argv) {
     const float scale = argc == 4 ? std::exp2(std::stof(argv[3])) : 1.0f;
     const kappa::ReferenceImage image = kappa::read_reference(argv[1]);
     std::vector<std::uint8_t> rgb(image.rgb.size());
-    for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = srgb_byte(image.rgb[i] * scale);
+    for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = kappa::linear_to_srgb_byte(image.rgb[i], scale);
     kappa::AtomicOutput out(argv[2], kappa::OutputKind::image);
     kappa::write_png(out.temp_path(), image.width, image.height, rgb, out.target());
     out.commit();
