@@ -9,6 +9,8 @@ packages=(
   libopenexr-dev libpng-dev libtinyobjloader-dev libtbb-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev
   libembree-dev libbenchmark-dev
+  # glTF: tinygltf's header (its implementation is compiled in renderer/scene/gltf/)
+  libtinygltf-dev
   # textures, environment images and the PNG preview, behind a module loaded on first use
   libopenimageio-dev
   python3-numpy python3-openimageio python3-matplotlib

@@ -67,6 +67,7 @@ void add_render_flags(CLI::App& render, RenderOptions& o, bool converge) {
   render.add_option("--threads", o.threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   render.add_option("--width", o.width, "film width (overrides the scene)")->check(CLI::Range(1, 1 << 15));
   render.add_option("--height", o.height, "film height (overrides the scene)")->check(CLI::Range(1, 1 << 15));
+  render.add_option("--camera", o.camera, "a glTF scene's camera, by name or index (default: its first perspective camera)");
   if (!converge) {
     render.add_option("--out", o.out, "output EXR (default out/<scene name>.exr)");
     render.add_option("--aov", o.aov, "extra EXR channels: comma list of albedo, normal, depth, cost, variance, spp");

@@ -33,6 +33,7 @@ struct RenderOptions {
   std::uint64_t seed = 0;
   int threads = 0;              ///< 0 = all cores
   int width = 0, height = 0;    ///< 0 = the scene's film size
+  std::string camera;           ///< --camera NAME|INDEX: one of a glTF scene's cameras ("" = its first)
   std::string out;              ///< default out/<scene name>.exr
   std::string aov;              ///< comma list of albedo, normal, depth, cost, variance, spp
   bool quiet = false;

@@ -295,10 +295,7 @@ int run_converge(const ConvergeOptions& options) {
     print_warnings(warnings);
     return s;
   }();
-  if (base.width > 0) scene.width = base.width;
-  if (base.height > 0) scene.height = base.height;
-  if (scene.camera_framed)
-    scene.camera = framing_camera(scene.bounds(), scene.camera.vfov_deg, float(scene.width) / float(scene.height));
+  apply_view(scene, base.camera, base.width, base.height);
   refuse_frame_over_memory(scene.width, scene.height, AovSelection{.variance = true});  // the reference's
 
   std::vector<std::filesystem::path> inputs = scene.inputs;

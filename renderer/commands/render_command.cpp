@@ -153,10 +153,10 @@ int run_render(const RenderOptions& options) {
   Scene scene =
       with_progress(show_progress, [&](TaskProgress* progress) { return load_scene(options.scene, warnings, progress); });
   print_warnings(warnings);
-  if (options.width > 0) scene.width = options.width;
-  if (options.height > 0) scene.height = options.height;
-  if (scene.camera_framed)  // frame again for the film's final aspect ratio
-    scene.camera = framing_camera(scene.bounds(), scene.camera.vfov_deg, float(scene.width) / float(scene.height));
+  apply_view(scene, options.camera, options.width, options.height);
+  if (!scene.punctual_lights.empty() && options.light_sampling == "bsdf")
+    print_warnings({"--light-sampling bsdf: the scene's " + std::to_string(scene.punctual_lights.size()) +
+                    " punctual light(s) light nothing (BSDF sampling cannot hit a point, spot or directional light)"});
   refuse_frame_over_memory(scene.width, scene.height, aov);
 
   // No output may replace an input or another output; then claim the

@@ -29,8 +29,9 @@ struct TexelScan {
   std::uint64_t nan = 0, infinite = 0, negative = 0;
 };
 
-/// How a lookup outside [0, 1] wraps (MTL -clamp on: clamp; else periodic).
-enum class TextureWrap { periodic, clamp };
+/// How a lookup outside [0, 1] wraps, per axis (MTL -clamp on: clamp, else
+/// periodic; glTF's sampler: REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT).
+enum class TextureWrap : unsigned char { periodic, clamp, mirror };
 /// nearest: the texel the coordinates fall in, finest level (tests, cut-outs);
 /// filtered: bilinear within trilinear/anisotropic MIP levels chosen from the
 /// footprint (OpenImageIO's defaults for a renderer's lookups).
@@ -60,6 +61,12 @@ class ImageLibrary {
  public:
   virtual ~ImageLibrary() = default;
 
+  /// Makes `name` an image file whose bytes are `bytes` (an image a glTF
+  /// file holds in a buffer or a data URI): every call below then reads it
+  /// from memory. Names are the caller's to keep unique; a second call with
+  /// a name does nothing.
+  virtual void add_memory_file(const std::string& name, std::vector<unsigned char> bytes) = 0;
+
   /// The header of `path`; throws std::runtime_error with OpenImageIO's
   /// words when it cannot be opened or is not an image it reads.
   virtual ImageFacts inspect(const std::string& path) = 0;
@@ -75,7 +82,7 @@ class ImageLibrary {
   /// `count` channels from `first` at `at`, into out[0..count). False when
   /// the lookup failed (out is then 0). Thread-safe; allocates nothing in
   /// the steady state (OpenImageIO's per-thread data is reused).
-  virtual bool lookup(void* texture, TextureWrap wrap, TextureFilter filter, int first, int count,
+  virtual bool lookup(void* texture, TextureWrap wrap_s, TextureWrap wrap_t, TextureFilter filter, int first, int count,
                       const TextureCoords& at, float* out) = 0;
   virtual TextureCacheStats statistics() = 0;
 

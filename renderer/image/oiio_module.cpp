@@ -12,7 +12,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 
 #include "renderer/image/image_library.h"
@@ -44,11 +46,33 @@ class StderrMuted {
   int m_saved;
 };
 
-/// Opens `path` for reading, colour unassociated from alpha (as the cache reads it).
-std::unique_ptr<OIIO::ImageInput> open_input(const std::string& path) {
+/// An image held in memory (add_memory_file): its bytes, and the reader the
+/// texture cache reads them through (each whole-image read at load gets a
+/// reader of its own, so that no two share a position).
+struct MemoryFile {
+  std::vector<unsigned char> bytes;
+  std::unique_ptr<OIIO::Filesystem::IOMemReader> cache_reader;
+};
+
+/// An open image and the memory reader it reads from, if any (which must
+/// outlive it).
+struct OpenInput {
+  std::unique_ptr<OIIO::Filesystem::IOMemReader> reader;
+  std::unique_ptr<OIIO::ImageInput> in;
+  OIIO::ImageInput* operator->() const { return in.get(); }
+  explicit operator bool() const { return bool(in); }
+};
+
+/// The configuration every open uses: colour unassociated from alpha (as the
+/// cache reads it), and the memory reader for an image held in memory.
+OIIO::ImageSpec input_config(OIIO::Filesystem::IOProxy* reader) {
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
-  return OIIO::ImageInput::open(path, &config);
+  if (reader) {
+    void* p = reader;
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &p);
+  }
+  return config;
 }
 
 std::runtime_error failure(const std::string& what, const std::string& detail) {
@@ -75,6 +99,15 @@ class OiioLibrary final : public ImageLibrary {
     m_cache_mb = cache_mb;
   }
   ~OiioLibrary() override { OIIO::TextureSystem::destroy(m_ts); }
+
+  void add_memory_file(const std::string& name, std::vector<unsigned char> bytes) override {
+    const std::lock_guard<std::mutex> lock(m_memory_mutex);
+    if (m_memory.count(name)) return;
+    auto file = std::make_unique<MemoryFile>();
+    file->bytes = std::move(bytes);
+    file->cache_reader = std::make_unique<OIIO::Filesystem::IOMemReader>(file->bytes.data(), file->bytes.size());
+    m_memory.emplace(name, std::move(file));
+  }
 
   ImageFacts inspect(const std::string& path) override {
     const StderrMuted muted;
@@ -147,10 +180,15 @@ class OiioLibrary final : public ImageLibrary {
   }
 
   void* texture(const std::string& path) override {
+    if (const MemoryFile* file = memory_file(path)) {
+      // The cache opens it through its reader, the first time it is named.
+      const OIIO::ImageSpec config = input_config(file->cache_reader.get());
+      m_ts->imagecache()->add_file(OIIO::ustring(path), nullptr, &config);
+    }
     return m_ts->get_texture_handle(OIIO::ustring(path));
   }
 
-  bool lookup(void* texture, TextureWrap wrap, TextureFilter filter, int first, int count, const TextureCoords& at,
+  bool lookup(void* texture, TextureWrap wrap_s, TextureWrap wrap_t, TextureFilter filter, int first, int count, const TextureCoords& at,
               float* out) override {
     thread_local OIIO::TextureSystem::Perthread* thread_info = nullptr;
     thread_local const OiioLibrary* thread_owner = nullptr;
@@ -160,7 +198,8 @@ class OiioLibrary final : public ImageLibrary {
     }
     OIIO::TextureOpt opt;
     opt.firstchannel = first;
-    opt.swrap = opt.twrap = wrap == TextureWrap::clamp ? OIIO::TextureOpt::WrapClamp : OIIO::TextureOpt::WrapPeriodic;
+    opt.swrap = oiio_wrap(wrap_s);
+    opt.twrap = oiio_wrap(wrap_t);
     if (filter == TextureFilter::nearest) {
       opt.interpmode = OIIO::TextureOpt::InterpClosest;
       opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
@@ -231,8 +270,35 @@ class OiioLibrary final : public ImageLibrary {
   }
 
  private:
+  static OIIO::TextureOpt::Wrap oiio_wrap(TextureWrap w) {
+    switch (w) {
+      case TextureWrap::clamp: return OIIO::TextureOpt::WrapClamp;
+      case TextureWrap::mirror: return OIIO::TextureOpt::WrapMirror;
+      case TextureWrap::periodic: break;
+    }
+    return OIIO::TextureOpt::WrapPeriodic;
+  }
+
+  const MemoryFile* memory_file(const std::string& path) {
+    const std::lock_guard<std::mutex> lock(m_memory_mutex);
+    const auto it = m_memory.find(path);
+    return it == m_memory.end() ? nullptr : it->second.get();
+  }
+
+  /// Opens `path` for reading: from memory when add_memory_file named it.
+  OpenInput open_input(const std::string& path) {
+    OpenInput open;
+    if (const MemoryFile* file = memory_file(path))
+      open.reader = std::make_unique<OIIO::Filesystem::IOMemReader>(file->bytes.data(), file->bytes.size());
+    const OIIO::ImageSpec config = input_config(open.reader.get());
+    open.in = OIIO::ImageInput::open(path, &config, open.reader.get());
+    return open;
+  }
+
   OIIO::TextureSystem* m_ts;
   int m_cache_mb = 0;
+  std::mutex m_memory_mutex;
+  std::map<std::string, std::unique_ptr<MemoryFile>> m_memory;  ///< never erased: the cache may reopen
 };
 
 }  // namespace

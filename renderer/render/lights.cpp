@@ -31,6 +31,21 @@ Lights::Lights(const Scene& scene) {
   const double env_power = double(luminance(scene.environment)) * 4.0 * std::numbers::pi * std::numbers::pi *
                            std::max(radius * radius, 1e-30);
   power.push_back(scene.environment == Vec3f{0, 0, 0} ? 0.0 : env_power);
+  // Punctual lights, as pbrt-v4's Phi: a point light 4 pi I, a spot light
+  // 2 pi I (1 - (cos_inner + cos_outer) / 2), a directional light pi R^2 E.
+  for (const PunctualLight& l : scene.punctual_lights) {
+    const double I = double(luminance(l.intensity));
+    switch (l.type) {
+      case PunctualLight::Type::point: power.push_back(4.0 * std::numbers::pi * I); break;
+      case PunctualLight::Type::spot:
+        power.push_back(2.0 * std::numbers::pi * I * (1.0 - 0.5 * (double(l.cos_inner) + double(l.cos_outer))));
+        break;
+      case PunctualLight::Type::directional:
+        power.push_back(std::numbers::pi * std::max(radius * radius, 1e-30) * I);
+        break;
+    }
+  }
+  m_punctual_count = scene.punctual_lights.size();
 
   double total = 0;
   for (double p : power) total += p;
@@ -49,7 +64,7 @@ Lights::Lights(const Scene& scene) {
   // light has pmf 0 exactly when choose() can never pick it (nee then counts
   // it where BSDF sampling finds it instead).
   for (std::size_t i = 0; i < m_cdf.size(); ++i) m_pmf.push_back(float(m_cdf[i] - (i > 0 ? m_cdf[i - 1] : 0.0)));
-  m_pmf_environment = m_pmf.back();
+  m_pmf_environment = m_pmf[environment_index()];
   if (!m_triangles.empty()) {
     m_pmf_of_triangle.assign(scene.triangles.size(), 0.0f);
     m_area_of_triangle.assign(scene.triangles.size(), 0.0f);

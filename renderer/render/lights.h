@@ -1,5 +1,7 @@
-// The lights of a scene: its emissive triangles and the constant environment,
-// chosen for next-event estimation with probability proportional to power.
+// The lights of a scene: its emissive triangles, the environment and glTF's
+// punctual lights, chosen for next-event estimation with probability
+// proportional to power. Indices: the triangles, then the environment, then
+// the punctual lights (a scene without them has the layout it always had).
 #pragma once
 
 #include <cstdint>
@@ -22,6 +24,12 @@ class Lights {
   /// `triangle(i)`, or `environment_index()` for the sky.
   std::size_t choose(double u) const;
   std::size_t environment_index() const { return m_triangles.size(); }
+  std::size_t punctual_count() const { return m_punctual_count; }
+  /// The index in Scene::punctual_lights of light `light`, or -1 when it is
+  /// not a punctual light.
+  std::ptrdiff_t punctual(std::size_t light) const {
+    return light > environment_index() ? std::ptrdiff_t(light - environment_index() - 1) : -1;
+  }
   TriangleId triangle(std::size_t light) const { return m_triangles[light]; }
   float area(std::size_t light) const { return m_areas[light]; }
 
@@ -40,6 +48,7 @@ class Lights {
   std::vector<float> m_pmf_of_triangle;   ///< per scene triangle
   std::vector<float> m_area_of_triangle;  ///< per scene triangle (0 if not emissive)
   float m_pmf_environment = 0;
+  std::size_t m_punctual_count = 0;
 };
 
 }  // namespace kappa

@@ -45,7 +45,7 @@ class PathTracer {
   /// What the scene has to light it, for choose_path_variant.
   SceneLighting lighting() const {
     return {m_lights.triangle_count() > 0, !(m_scene.environment == Vec3f{0, 0, 0}), m_lights.pmf_environment() > 0.0f,
-            m_env.has_value()};
+            m_env.has_value(), m_lights.punctual_count() > 0};
   }
   /// What its surfaces need, for choose_path_variant.
   SceneSurfaces surfaces() const {
@@ -78,7 +78,7 @@ class PathTracer {
     for (int depth = 0;; ++depth) {
       // A scene with materials counts its bounce rays by lobe too.
       std::optional<Hit> hit;
-      if constexpr (V.images) {
+      if constexpr (V.extras) {
         hit = m_cutouts.any() ? q.closest_by_lobe(ray, depth, lobe, m_cutouts) : q.closest_by_lobe(ray, depth, lobe);
       } else if constexpr (V.surfaces == Surfaces::general) {
         hit = q.closest_by_lobe(ray, depth, lobe);
@@ -87,8 +87,8 @@ class PathTracer {
       }
       if (!hit) {
         if constexpr (V.environment) {
-          // An image (V.images, when the scene has one) or the constant.
-          const bool image = V.images && m_env.has_value();
+          // An image (V.extras, when the scene has one) or the constant.
+          const bool image = V.extras && m_env.has_value();
           const Vec3f Le = image ? m_env->Le(ray.d) : m_scene.environment;
           if (depth == 0 || !kLightSamples || prev_delta) {
             L += beta * Le;
@@ -218,7 +218,7 @@ class PathTracer {
   /// A shadow ray's query, through the cut-outs where the scene has them.
   template <PathVariant V, class Queries>
   bool occluded(const Ray& r, Queries& q) const {
-    if constexpr (V.images) {
+    if constexpr (V.extras) {
       if (m_cutouts.any()) return q.shadow(r, m_cutouts);
     }
     return q.shadow(r);
@@ -240,7 +240,48 @@ class PathTracer {
     Vec3f Le;
     float pdf = 0;
     float cos = 0;
+    /// A punctual light: Le is its irradiance (normal to wi), pdf only the
+    /// probability of choosing it, and no MIS weight applies (BSDF sampling
+    /// cannot hit it).
+    bool delta = false;
   };
+
+  /// A punctual light's sample at sp (chosen with probability pmf): the
+  /// irradiance it brings along wi, unless occluded. Point and spot lights
+  /// fall off as 1/d^2, a spot's cone as glTF's KHR_lights_punctual
+  /// specifies (its smooth attenuation, squared); a directional light's rays
+  /// are parallel and unoccluded to infinity.
+  template <PathVariant V, class Queries>
+  std::optional<LightSample> sample_punctual(const SurfacePoint& sp, const Vec3f& n, bool two_sided,
+                                             const PunctualLight& light, float pmf, Queries& q) const {
+    if (!(pmf > 0.0f)) return std::nullopt;
+    if (light.type == PunctualLight::Type::directional) {
+      const Vec3f wi = -light.direction;
+      const float cos_s = dot(n, wi);
+      if ((!two_sided && cos_s <= 0.0f) || cos_s == 0.0f) return std::nullopt;
+      if (occluded<V>(Ray{offset_ray_origin(sp, wi), wi}, q)) return std::nullopt;
+      return LightSample{wi, light.intensity, pmf, cos_s, true};
+    }
+    const Vec3f to_light = light.position - sp.p;
+    const float dist2 = dot(to_light, to_light);
+    if (!(dist2 > 0.0f)) return std::nullopt;
+    const Vec3f wi = to_light / std::sqrt(dist2);
+    const float cos_s = dot(n, wi);
+    if ((!two_sided && cos_s <= 0.0f) || cos_s == 0.0f) return std::nullopt;
+    float falloff = 1.0f;
+    if (light.type == PunctualLight::Type::spot) {
+      const float scale = 1.0f / std::max(0.001f, light.cos_inner - light.cos_outer);
+      const float t = std::clamp((dot(-wi, light.direction) - light.cos_outer) * scale, 0.0f, 1.0f);
+      falloff = t * t;
+      if (!(falloff > 0.0f)) return std::nullopt;
+    }
+    const Vec3f from = offset_ray_origin(sp, wi);
+    const Vec3f d = light.position - from;
+    const float len = length(d);
+    if (!(len > 0.0f)) return std::nullopt;
+    if (occluded<V>(Ray{from, d / len, 0.0f, len * (1.0f - kShadowEpsilon)}, q)) return std::nullopt;
+    return LightSample{wi, light.intensity * (falloff / dist2), pmf, cos_s, true};
+  }
 
   /// One light sample at a vertex with oriented geometric normal n, for a
   /// surface that may transmit (`two_sided`: a light behind n counts).
@@ -255,9 +296,13 @@ class PathTracer {
     std::size_t light = m_lights.environment_index();
     if constexpr (V.triangle_lights) light = m_lights.choose(choice);
     else (void)choice;
+    if constexpr (V.extras) {
+      if (const std::ptrdiff_t k = m_lights.punctual(light); k >= 0)
+        return sample_punctual<V>(sp, n, two_sided, m_scene.punctual_lights[std::size_t(k)], m_lights.pmf(light), q);
+    }
     if constexpr (V.environment) {
       if (light == m_lights.environment_index()) {
-        if constexpr (V.images) {
+        if constexpr (V.extras) {
           if (m_env) {
             // An image: drawn by its luminance over the whole sphere.
             const std::optional<EnvironmentMap::Sample> es = m_env->sample(u1, u2);
@@ -337,7 +382,7 @@ class PathTracer {
         if (const auto ls = sample_light<V>(sp, n, mat.refracts(), sampler, depth, q)) {
           const Vec3f f_cos = f.eval_cos(wo, ls->wi);
           if (!(f_cos == Vec3f{0, 0, 0})) {
-            const float weight = kMis ? power_heuristic(ls->pdf, f.pdf(wo, ls->wi)) : 1.0f;
+            const float weight = kMis && !ls->delta ? power_heuristic(ls->pdf, f.pdf(wo, ls->wi)) : 1.0f;
             L += beta * f_cos * ls->Le * (weight / ls->pdf);
           }
         }

@@ -25,13 +25,15 @@ PathVariant choose_path_variant(SceneLighting scene, LightSampling strategy, boo
   PathVariant v{strategy, true, true, aovs || !specialise};
   if (v.strategy == LightSampling::bsdf) v.triangle_lights = false;
   if (specialise) {
-    if (v.strategy != LightSampling::bsdf) v.triangle_lights = scene.triangle_lights;
+    // Punctual lights are sampled with the triangles (Lights), in the
+    // variant with extras.
+    if (v.strategy != LightSampling::bsdf) v.triangle_lights = scene.triangle_lights || scene.punctual_lights;
     v.environment = scene.environment;
     // Nothing light sampling could pick: BSDF sampling alone, the same estimator.
     if (!v.triangle_lights && !(v.environment && scene.environment_light)) v.strategy = LightSampling::bsdf;
   }
-  v.images = surfaces.cutouts || scene.environment_image;
-  v.surfaces = surfaces.non_lambertian || v.images ? Surfaces::general
+  v.extras = surfaces.cutouts || scene.environment_image || scene.punctual_lights;
+  v.surfaces = surfaces.non_lambertian || v.extras ? Surfaces::general
                : surfaces.vertex_normals ? Surfaces::lambertian_smooth
                                          : Surfaces::lambertian;
   if (v.surfaces != Surfaces::lambertian) {
@@ -53,7 +55,7 @@ std::string path_variant_name(const PathVariant& v) {
   }
   if (v.surfaces == Surfaces::lambertian_smooth) name += ", shading normals";
   if (v.surfaces == Surfaces::general) name += ", materials";
-  if (v.images) name += ", images";
+  if (v.extras) name += ", extras";
   if (v.aovs) name += ", first hit";
   return name;
 }

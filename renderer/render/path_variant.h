@@ -52,18 +52,19 @@ struct PathVariant {
   bool environment = true;      ///< rays that escape read the environment, which is also sampled unless bsdf
   bool aovs = true;             ///< the camera ray's first hit is recorded (albedo, normal, depth, cost AOVs)
   Surfaces surfaces = Surfaces::lambertian;
-  /// The scene's images: cut-outs (queries pass the any-hit filter) and an
-  /// environment image (sampled by its distribution). Compiled only as each
-  /// strategy's general variant on general surfaces, both behind run-time
-  /// checks of whether the scene has them.
-  bool images = false;
+  /// What few scenes have: cut-outs (queries pass the any-hit filter), an
+  /// environment image (sampled by its distribution) and punctual lights
+  /// (glTF's point, spot and directional lights, found by light sampling
+  /// only). Compiled only as each strategy's general variant on general
+  /// surfaces, each behind a run-time check of whether the scene has it.
+  bool extras = false;
 };
 
 /// Every variant the frames are compiled for: with AOVs and without, the
 /// strategies with lights (mis and nee: triangles, environment or both),
 /// bsdf (with and without the environment), on Lambertian surfaces; each
 /// strategy's general variant (every light on, the first hit recorded) on
-/// the other two kinds of surfaces; and on general surfaces with images.
+/// the other two kinds of surfaces; and on general surfaces with extras.
 inline constexpr std::array<PathVariant, 25> kPathVariants = [] {
   std::array<PathVariant, 25> v{};
   std::size_t i = 0;
@@ -90,6 +91,7 @@ struct SceneLighting {
   bool environment = false;        ///< a non-zero environment
   bool environment_light = false;  ///< one light sampling can pick (its power does not round to 0)
   bool environment_image = false;  ///< the environment is an image (EnvironmentMap)
+  bool punctual_lights = false;    ///< glTF point, spot or directional lights (Scene::punctual_lights)
 };
 
 /// What the scene's surfaces need (Scene::materials, Scene::normals).
@@ -117,7 +119,7 @@ void with_path_variant(const PathVariant& v, F&& f) {
   const bool ran = [&]<std::size_t... I>(std::index_sequence<I...>) {
     return ((v.strategy == kPathVariants[I].strategy && v.triangle_lights == kPathVariants[I].triangle_lights &&
              v.environment == kPathVariants[I].environment && v.aovs == kPathVariants[I].aovs &&
-             v.surfaces == kPathVariants[I].surfaces && v.images == kPathVariants[I].images &&
+             v.surfaces == kPathVariants[I].surfaces && v.extras == kPathVariants[I].extras &&
              (f.template operator()<kPathVariants[I]>(), true)) ||
             ...);
   }(std::make_index_sequence<kPathVariants.size()>{});

@@ -42,6 +42,16 @@ nlohmann::ordered_json report_header(const Scene& scene, const Accelerator& acce
   j["scene"] = scene.source.string();
   j["load_s"] = scene.load_s;
   j["images"] = images_section(scene);
+  j["gltf"] = nlohmann::ordered_json::array();
+  for (const GltfSummary& g : scene.gltf_files)
+    j["gltf"].push_back({{"file", g.file.string()}, {"nodes", g.nodes}, {"meshes", g.meshes},
+                         {"mesh_instances", g.mesh_instances}, {"primitives", g.primitives},
+                         {"triangles", g.triangles}, {"cameras", g.cameras}, {"lights", g.lights},
+                         {"materials", g.materials}, {"images", g.images}});
+  j["camera"] = nullptr;
+  if (scene.camera_index >= 0)
+    j["camera"] = {{"name", scene.cameras[std::size_t(scene.camera_index)].name}, {"index", scene.camera_index}};
+  j["punctual_lights"] = scene.punctual_lights.size();
   j["accel"] = std::string(accel.name());
   j["accel_choice"] = nullptr;  // how --accel auto chose, in a render that asked for it
   j["grid_choice"] = nullptr;   // how --grid-res model chose, in a render that asked for it

@@ -1,5 +1,5 @@
 // The one entry point for mesh files, whatever their format: picks the
-// format's loader (obj/ today; gltf/ goes beside it) by the file's extension.
+// format's loader (obj/, gltf/) by the file's extension.
 #pragma once
 
 #include <filesystem>
@@ -9,6 +9,9 @@
 #include "renderer/scene/scene.h"
 
 namespace kappa {
+
+/// A .gltf or .glb name (any case).
+bool is_gltf_file(const std::filesystem::path& file);
 
 /// Appends the triangles, vertex attributes and materials of `mesh` to
 /// `scene`. A name whose extension names no other format is read as OBJ, as

@@ -45,6 +45,37 @@ struct CameraSpec {
   float vfov_deg = 39.3077f;
 };
 
+/// A camera the scene file defines (a glTF perspective camera), which
+/// --camera NAME|INDEX picks.
+struct NamedCamera {
+  std::string name;
+  int file_index = 0;  ///< its index in the file's cameras (what --camera INDEX names)
+  CameraSpec spec;
+  float aspect = 0;  ///< width / height the file gives; 0 when it gives none
+};
+
+/// A light no ray can hit (glTF's KHR_lights_punctual): found only by
+/// next-event estimation. Intensities are in Kappa's units (see
+/// docs/scene-format.md): point and spot lights in W sr^-1 (candela / 683),
+/// directional lights in W m^-2 (lux / 683), as Blender's importer converts.
+struct PunctualLight {
+  enum class Type : unsigned char { point, spot, directional };
+  Type type = Type::point;
+  std::string name;
+  Vec3f position{0, 0, 0};     ///< point and spot
+  Vec3f direction{0, 0, -1};   ///< spot and directional: the way the light travels (unit)
+  Vec3f intensity{0, 0, 0};    ///< colour x intensity, converted
+  float cos_inner = 1, cos_outer = 0;  ///< spot: the cone's cosines (full inside inner, 0 outside outer)
+  float range = 0;             ///< the file's range (0: none); not modelled, warned
+};
+
+/// What a glTF file held, for the report.
+struct GltfSummary {
+  std::filesystem::path file;
+  std::uint64_t nodes = 0, meshes = 0, mesh_instances = 0, primitives = 0, triangles = 0;
+  std::uint64_t cameras = 0, lights = 0, materials = 0, images = 0;
+};
+
 struct Scene {
   std::string name;                    ///< used for the default output file name
   std::filesystem::path source;        ///< the file it was loaded from
@@ -64,6 +95,16 @@ struct Scene {
   /// The opacity maps' texels, for the cut-out test (TextureMap::mask).
   std::vector<OpacityMask> opacity_masks;
   CameraSpec camera;
+  /// The cameras the scene file defines (glTF), in its order; `camera` is
+  /// the first unless --camera picks another.
+  std::vector<NamedCamera> cameras;
+  /// The index in `cameras` of the camera `camera` is, or -1 (a scene file's
+  /// camera, or the framing camera).
+  int camera_index = -1;
+  /// glTF's punctual lights, in world space.
+  std::vector<PunctualLight> punctual_lights;
+  /// The glTF files read (empty for OBJ only).
+  std::vector<GltfSummary> gltf_files;
   bool camera_framed = false;  ///< the camera frames the bounds (no camera given): re-frame if the film changes
   Vec3f environment{0, 0, 0};  ///< constant radiance of rays that escape (an image's mean, with one)
   /// A latitude-longitude environment image (scene.json "environment": FILE),

@@ -65,7 +65,8 @@ Vec3f mean_colour(ImageLibrary& lib, const TextureMap& map, const ImageFacts& f)
       if (!f.floating) v = srgb_to_linear(v);
       sum[c] += v > 0.0f && std::isfinite(v) ? double(v) : 0.0;
     }
-  return {float(sum[0] / double(n)), float(sum[1] / double(n)), float(sum[2] / double(n))};
+  return {float(sum[0] / double(n)) * map.factor.x, float(sum[1] / double(n)) * map.factor.y,
+          float(sum[2] / double(n)) * map.factor.z};
 }
 
 void load_texture_maps(Scene& scene, ImageLibrary& lib, Warnings& warnings) {
@@ -75,6 +76,7 @@ void load_texture_maps(Scene& scene, ImageLibrary& lib, Warnings& warnings) {
     const std::string what = map.keyword;
     auto it = opened.find(map.file);
     if (it == opened.end()) {
+      if (map.embedded) lib.add_memory_file(map.file.string(), *map.embedded);
       const ImageFacts f = checked_facts(lib, map.file, map.declared_in, map.line, what);
       check_texels(lib, map.file, map.declared_in, map.line, what,
                    "NaN and negative values read as 0, values above 1 as 1", warnings);
@@ -85,11 +87,22 @@ void load_texture_maps(Scene& scene, ImageLibrary& lib, Warnings& warnings) {
     // Blender decodes every 8- and 16-bit image from sRGB, data maps too
     // (its OBJ importer sets no colour space); float images are linear.
     // Alpha is never encoded.
-    map.srgb = !f.floating;
+    map.srgb = !f.floating && !map.linear;
     if (f.width == 1 && f.height == 1)
       warnings.push_back(located(map.declared_in, map.line, what + " '" + map.file.string() +
                                                                 "' is 1x1: a constant over the surface"));
     if (map.slot == MapSlot::opacity) {
+      if (!f.alpha && !map.warn_without_alpha) {
+        // glTF: an image without alpha has alpha 1 everywhere.
+        if (!(map.alpha_factor >= map.alpha_cutoff)) {
+          OpacityMask none;  // cut out everywhere: a 1x1 mask of 0
+          none.width = none.height = 1;
+          none.opaque = {0};
+          map.mask = std::int32_t(scene.opacity_masks.size());
+          scene.opacity_masks.push_back(std::move(none));
+        }
+        continue;
+      }
       if (!f.alpha) {
         // Blender links the image's alpha output, which is 1 without an alpha channel.
         warnings.push_back(located(map.declared_in, map.line,
@@ -111,7 +124,8 @@ void load_texture_maps(Scene& scene, ImageLibrary& lib, Warnings& warnings) {
       mask.offset = map.offset;
       mask.opaque.resize(std::size_t(f.width) * std::size_t(f.height));
       for (std::size_t i = 0; i < mask.opaque.size(); ++i)
-        mask.opaque[i] = texels[i * std::size_t(f.channels) + std::size_t(f.alpha_channel)] >= 0.5f;
+        mask.opaque[i] =
+            texels[i * std::size_t(f.channels) + std::size_t(f.alpha_channel)] * map.alpha_factor >= map.alpha_cutoff;
       map.mask = std::int32_t(scene.opacity_masks.size());
       scene.opacity_masks.push_back(std::move(mask));
       continue;

@@ -1,5 +1,6 @@
 #include "renderer/scene/scene_loader.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -9,9 +10,8 @@
 #include <sstream>
 
 #include "renderer/scene/json_scan.h"
-#include "renderer/scene/scene_images.h"
-#include "renderer/scene/obj/obj_limits.h"
 #include "renderer/scene/mesh_file.h"
+#include "renderer/scene/obj/obj_limits.h"
 #include "renderer/scene/scene_images.h"
 
 namespace kappa {
@@ -129,12 +129,12 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings, Tas
   scene.inputs.push_back(file);
   scene.name = scene_name(file);
 
-  if (!root.contains("meshes")) fail(file, 0, "missing field 'meshes' (a list of OBJ files)");
+  if (!root.contains("meshes")) fail(file, 0, "missing field 'meshes' (a list of OBJ or glTF files)");
   const json& meshes = root["meshes"];
-  if (!meshes.is_array() || meshes.empty()) field.bad("meshes", "a non-empty array of OBJ file names");
+  if (!meshes.is_array() || meshes.empty()) field.bad("meshes", "a non-empty array of OBJ or glTF file names");
   std::vector<std::filesystem::path> mesh_paths;
   for (const json& m : meshes) {
-    if (!m.is_string() || m.get<std::string>().empty()) field.bad("meshes", "a non-empty array of OBJ file names");
+    if (!m.is_string() || m.get<std::string>().empty()) field.bad("meshes", "a non-empty array of OBJ or glTF file names");
     mesh_paths.push_back(file.parent_path() / m.get<std::string>());
   }
 
@@ -203,6 +203,44 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings, Tas
     scene.camera = framing_camera(scene.bounds(), 39.3077f, float(scene.width) / float(scene.height));
     scene.camera_framed = true;
   }
+  if (!scene.cameras.empty())
+    warnings.push_back(located(file, 0, std::to_string(scene.cameras.size()) +
+                                            " glTF camera(s) in the meshes not used: a scene file's camera is its "
+                                            "'camera' field (or the framing camera)"));
+  scene.cameras.clear();
+  return scene;
+}
+
+/// A film of `aspect` (width / height) whose longer side is the default's.
+void film_of_aspect(Scene& scene, float aspect) {
+  if (!(aspect > 0)) return;
+  const int side = std::max(scene.width, scene.height);
+  if (aspect >= 1) {
+    scene.width = side;
+    scene.height = std::clamp(int(std::lround(double(side) / double(aspect))), 1, kMaxFilmSide);
+  } else {
+    scene.height = side;
+    scene.width = std::clamp(int(std::lround(double(side) * double(aspect))), 1, kMaxFilmSide);
+  }
+}
+
+/// A bare glTF file: lit as a bare OBJ is (environment 1) besides its own
+/// lights; its first perspective camera, whose aspect sets the film, or the
+/// framing camera.
+Scene load_gltf_scene(const std::filesystem::path& file, Warnings& warnings, TaskProgress* progress) {
+  Scene scene;
+  scene.source = file;
+  scene.name = scene_name(file);
+  scene.environment = {1, 1, 1};
+  load_mesh_file(file, scene, warnings, progress);
+  if (!scene.cameras.empty()) {
+    scene.camera = scene.cameras.front().spec;
+    scene.camera_index = 0;
+    film_of_aspect(scene, scene.cameras.front().aspect);
+  } else if (!scene.triangles.empty()) {
+    scene.camera = framing_camera(scene.bounds(), 39.3077f, float(scene.width) / float(scene.height));
+    scene.camera_framed = true;
+  }
   return scene;
 }
 
@@ -227,6 +265,40 @@ std::string lower_extension(const std::filesystem::path& file) {
 
 }  // namespace
 
+void apply_view(Scene& scene, const std::string& camera, int width, int height) {
+  if (!camera.empty()) {
+    std::string names;
+    int index = -1;
+    for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
+      names += std::string(names.empty() ? "" : ", ") + std::to_string(scene.cameras[i].file_index) + " '" +
+               scene.cameras[i].name + "'";
+      if (index < 0 && scene.cameras[i].name == camera) index = int(i);
+    }
+    if (index < 0 && camera.find_first_not_of("0123456789") == std::string::npos && camera.size() < 10)
+      for (std::size_t i = 0; i < scene.cameras.size(); ++i)
+        if (scene.cameras[i].file_index == std::stoi(camera)) index = int(i);
+    if (scene.cameras.empty())
+      throw InputError("--camera " + camera + ": the scene defines no cameras (a glTF file given as the scene does)");
+    if (index < 0)
+      throw InputError("--camera " + camera + ": no perspective camera of that name or index (the scene's: " + names + ")");
+    scene.camera = scene.cameras[std::size_t(index)].spec;
+    scene.camera_index = index;
+    scene.camera_framed = false;
+    scene.width = scene.height = std::max(scene.width, scene.height);
+    film_of_aspect(scene, scene.cameras[std::size_t(index)].aspect);
+  }
+  const float aspect = scene.camera_index >= 0 ? scene.cameras[std::size_t(scene.camera_index)].aspect : 0.0f;
+  if (width > 0) scene.width = width;
+  if (height > 0) scene.height = height;
+  if (aspect > 0 && (width > 0) != (height > 0)) {
+    // One side given: the other from the camera's aspect.
+    if (width > 0) scene.height = std::clamp(int(std::lround(double(width) / double(aspect))), 1, kMaxFilmSide);
+    else scene.width = std::clamp(int(std::lround(double(height) * double(aspect))), 1, kMaxFilmSide);
+  }
+  if (scene.camera_framed)  // frame again for the film's final aspect ratio
+    scene.camera = framing_camera(scene.bounds(), scene.camera.vfov_deg, float(scene.width) / float(scene.height));
+}
+
 std::string scene_name(const std::filesystem::path& file) {
   const std::string stem = file.stem().string();
   if (stem == "scene") {
@@ -246,8 +318,10 @@ Scene load_scene(const std::filesystem::path& file, Warnings& warnings, TaskProg
     scene = load_json_scene(file, pending, progress);
   } else if (ext == ".obj") {
     scene = load_obj_scene(file, pending, progress);
+  } else if (ext == ".gltf" || ext == ".glb") {
+    scene = load_gltf_scene(file, pending, progress);
   } else {
-    fail(file, 0, "unsupported scene format '" + ext + "' (expected .json or .obj)");
+    fail(file, 0, "unsupported scene format '" + ext + "' (expected .json, .obj, .gltf or .glb)");
   }
   if (scene.triangles.empty()) fail(file, 0, "the scene has no triangles: nothing to render");
   if (scene.triangles.size() >= std::size_t(kNoTriangle))

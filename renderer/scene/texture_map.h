@@ -8,11 +8,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/vec2.h"
 #include "core/vec3.h"
+#include "renderer/image/image_library.h"
 
 namespace kappa {
 
@@ -22,14 +24,36 @@ inline constexpr std::size_t kMapSlots = 6;
 
 struct TextureMap {
   MapSlot slot = MapSlot::base_color;
-  std::filesystem::path file;         ///< resolved against the MTL file's folder
-  std::filesystem::path declared_in;  ///< the MTL file
-  std::size_t line = 0;               ///< its line there
-  std::string keyword;                ///< map_Kd, map_d, ...
+  std::filesystem::path file;         ///< resolved against the MTL (glTF) file's folder
+  std::filesystem::path declared_in;  ///< the MTL or glTF file
+  std::size_t line = 0;               ///< its line there (0 in a glTF file)
+  std::string keyword;                ///< map_Kd, map_d, ... or the glTF element's JSON pointer
+  /// The image's bytes when the scene file holds it (a glTF buffer view or
+  /// data URI): `file` is then a name, "scene.glb#images/3.png", that the
+  /// image library reads from memory.
+  std::shared_ptr<const std::vector<unsigned char>> embedded;
   /// The lookup's coordinates are (u, v) * scale + offset (-s and -o, as
   /// Blender's Mapping node applies them: scale, then offset).
   Vec2f scale{1, 1}, offset{0, 0};
-  bool clamp = false;  ///< -clamp on: coordinates outside [0, 1] read the edge; else the image repeats
+  /// Outside [0, 1] (glTF's sampler wrapS, wrapT; an MTL's images repeat).
+  TextureWrap wrap_s = TextureWrap::periodic, wrap_t = TextureWrap::periodic;
+  /// Multiplies what the lookup gives (glTF's baseColorFactor, emissiveFactor
+  /// × emissive strength, metallic and roughness factors in x): 1 for an MTL,
+  /// whose maps replace the constant.
+  Vec3f factor{1, 1, 1};
+  /// A scalar map reads this channel (glTF: roughness G = 1, metallic B = 2);
+  /// -1: the luminance of its colour, Blender's implicit conversion.
+  int scalar_channel = -1;
+  /// Never decoded from sRGB (glTF's metallic-roughness texture is linear
+  /// data); otherwise decoded when stored in 8 or 16 bits, as Blender does.
+  bool linear = false;
+  /// An opacity map: opaque where alpha × alpha_factor ≥ alpha_cutoff (glTF's
+  /// MASK: baseColorFactor's alpha and alphaCutoff; an MTL's map_d: 1, 0.5).
+  float alpha_factor = 1, alpha_cutoff = 0.5f;
+  /// An opacity map without an alpha channel is warned about (an MTL's map_d:
+  /// Blender reads its alpha, so the surface stays opaque); glTF defines its
+  /// alpha as 1, which alpha_factor and alpha_cutoff then decide.
+  bool warn_without_alpha = true;
 
   // Filled by load_scene_images:
   void* handle = nullptr;    ///< the TextureSystem's handle

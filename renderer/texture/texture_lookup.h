@@ -26,8 +26,8 @@ struct UvFootprint {
 /// A texel value the BSDF can use: NaN and negatives (warned about at load) 0.
 inline float usable(float v, float hi) { return v > 0.0f ? std::min(v, hi) : 0.0f; }
 
-/// The map's colour at (u, v): RGB, a grey file's one channel repeated.
-inline Vec3f lookup_colour(const TextureMap& map, Vec2f uv, const UvFootprint& fp, float hi) {
+/// The lookup's coordinates and footprint in the image (placement applied).
+inline TextureCoords texture_coords(const TextureMap& map, Vec2f uv, const UvFootprint& fp) {
   TextureCoords at;
   at.s = uv.u * map.scale.u + map.offset.u;
   at.t = 1.0f - (uv.v * map.scale.v + map.offset.v);  // v runs up, the image's rows down
@@ -35,18 +35,32 @@ inline Vec3f lookup_colour(const TextureMap& map, Vec2f uv, const UvFootprint& f
   at.dsdy = fp.dudy * map.scale.u;
   at.dtdx = -fp.dvdx * map.scale.v;
   at.dtdy = -fp.dvdy * map.scale.v;
-  float c[3] = {0, 0, 0};
-  const int count = map.channels >= 3 ? 3 : 1;
-  image_library().lookup(map.handle, TextureWrap::periodic, TextureFilter::filtered, 0, count, at, c);
-  if (count == 1) c[1] = c[2] = c[0];
-  for (float& v : c) v = usable(map.srgb ? srgb_to_linear(v) : v, hi);
-  return {c[0], c[1], c[2]};
+  return at;
 }
 
-/// A scalar map: the luminance of its colour (the value of a grey file).
+/// The map's colour at (u, v): RGB, a grey file's one channel repeated,
+/// times its factor.
+inline Vec3f lookup_colour(const TextureMap& map, Vec2f uv, const UvFootprint& fp, float hi) {
+  float c[3] = {0, 0, 0};
+  const int count = map.channels >= 3 ? 3 : 1;
+  image_library().lookup(map.handle, map.wrap_s, map.wrap_t, TextureFilter::filtered, 0, count,
+                         texture_coords(map, uv, fp), c);
+  if (count == 1) c[1] = c[2] = c[0];
+  for (float& v : c) v = usable(map.srgb ? srgb_to_linear(v) : v, hi);
+  return {usable(c[0] * map.factor.x, hi), usable(c[1] * map.factor.y, hi), usable(c[2] * map.factor.z, hi)};
+}
+
+/// A scalar map: its channel (glTF), else the luminance of its colour (the
+/// value of a grey file), times its factor.
 inline float lookup_scalar(const TextureMap& map, Vec2f uv, const UvFootprint& fp) {
-  const Vec3f c = lookup_colour(map, uv, fp, 1.0f);
-  return usable(0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z, 1.0f);
+  if (map.scalar_channel < 0 || map.scalar_channel >= map.channels) {
+    const Vec3f c = lookup_colour(map, uv, fp, 1.0f);
+    return usable(0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z, 1.0f);
+  }
+  float v = 0;
+  image_library().lookup(map.handle, map.wrap_s, map.wrap_t, TextureFilter::filtered, map.scalar_channel, 1,
+                         texture_coords(map, uv, fp), &v);
+  return usable(usable(map.srgb ? srgb_to_linear(v) : v, 1.0f) * map.factor.x, 1.0f);
 }
 
 /// `p` (the material's constants) with its maps' values where it has maps.

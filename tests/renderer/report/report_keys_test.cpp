@@ -140,9 +140,13 @@ TEST(ReportKeys, EveryDocumentedKeyIsInTheReports) {
                                              "--height", "16", "--out", (tmp / "t.exr").string()});
   ASSERT_TRUE(textured.at("images").at("environment_image").is_object());
   ASSERT_TRUE(textured.at("images").at("texture_cache").is_object());
+  // A glTF scene: its file's counts and the camera it was seen through.
+  const nlohmann::json gltf = report_of({"render", (test::assets_dir() / "gltf" / "cameras.gltf").string(), "--spp",
+                                         "1", "--width", "16", "--height", "8", "--out", (tmp / "l.exr").string()});
+  ASSERT_TRUE(gltf.at("camera").is_object());
   std::set<std::string> seen;
   for (const auto* j :
-       {&render, &budgeted, &chosen, &lines, &segments, &sampled, &grid2_render, &grid2_lines, &textured})
+       {&render, &budgeted, &chosen, &lines, &segments, &sampled, &grid2_render, &grid2_lines, &textured, &gltf})
     collect(*j, seen);
   for (const auto& key : documented.all) EXPECT_TRUE(seen.count(key)) << key << " is documented but in no report";
   // Top-level keys: in a render's report and in a cast's (render is null in a

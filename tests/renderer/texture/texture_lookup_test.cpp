@@ -44,7 +44,7 @@ class TextureLookup : public ::testing::Test {
     c.s = s;
     c.t = t;
     float out = -1;
-    EXPECT_TRUE(image_library().lookup(m_handle, TextureWrap::periodic, filter, 0, 1, c, &out));
+    EXPECT_TRUE(image_library().lookup(m_handle, TextureWrap::periodic, TextureWrap::periodic, filter, 0, 1, c, &out));
     return out;
   }
 
