@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzes one target, or all, with libFuzzer for SECONDS each:
 #   tools/fuzz.sh TARGET|all SECONDS
-# Targets (tests/fuzz/): obj, mtl, scene_json, grid_res, exr_reference,
+# Targets (tests/fuzz/): obj, mtl, scene_json, gltf, grid_res, exr_reference,
 # differential. Builds them with clang, ASan and UBSan in build-fuzz/, seeds
 # them from assets/, ../shared/scenes/malformed/ (when it exists) and
 # tests/data/fuzz/TARGET/, and keeps the growing corpus in
@@ -11,7 +11,7 @@
 # input in tests/data/fuzz/TARGET/ (Fuzz.Replay.TARGET runs it) and fix it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-targets=(obj mtl scene_json grid_res exr_reference differential)
+targets=(obj mtl scene_json gltf grid_res exr_reference differential)
 if [ $# -ne 2 ] || ! [[ "$2" =~ ^[0-9]+$ ]] || [ "$2" -lt 1 ]; then
   echo "usage: tools/fuzz.sh TARGET|all SECONDS   (targets: ${targets[*]})" >&2
   exit 2
@@ -39,6 +39,7 @@ seed_pattern() {
     obj) echo '*.obj' ;;
     mtl) echo '*.mtl' ;;
     scene_json) echo '*.json' ;;
+    gltf) echo '*.gl[tb]*' ;;
     exr_reference) echo '*.exr' ;;
     *) echo '' ;;
   esac

@@ -14,11 +14,12 @@ Lights::Lights(const Scene& scene) {
     if (!m.emissive()) continue;
     const double area = 0.5 * double_area(scene.triangles[i]);
     // One-sided emitter: power = L * area * pi (luminance in double, so a
-    // tiny but positive Ke is still a light).
+    // tiny but positive Ke is still a light); twice that for both sides.
     // An emission map's power is its mean texel's (Blender's map_Ke replaces Ke).
     const std::int32_t map = m.maps[std::size_t(MapSlot::emission)];
     const Vec3d Ke(map >= 0 ? scene.texture_maps[std::size_t(map)].mean : m.emission);
-    const double p = (0.2126 * Ke.x + 0.7152 * Ke.y + 0.0722 * Ke.z) * area * std::numbers::pi;
+    const double p = (0.2126 * Ke.x + 0.7152 * Ke.y + 0.0722 * Ke.z) * area * std::numbers::pi *
+                     (m.emits_both_sides ? 2.0 : 1.0);
     if (!(p > 0)) continue;
     m_triangles.push_back(i);
     m_areas.push_back(float(area));

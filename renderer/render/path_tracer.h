@@ -121,8 +121,8 @@ class PathTracer {
         if (depth == 0) first = FirstHit{mat.albedo, n, hit->t};
       }
 
-      // Emission: one-sided, towards the geometric normal.
-      if (mat.emissive() && cos_o > 0.0f) {
+      // Emission: towards the geometric normal, or both ways (emits_both_sides).
+      if (mat.emissive() && (cos_o > 0.0f || (cos_o < 0.0f && mat.emits_both_sides))) {
         Vec3f Le = mat.emission;
         if constexpr (V.surfaces == Surfaces::general) {
           if (mat.has_map(MapSlot::emission)) Le = emitted(m_scene, mat, shading.uv);
@@ -139,7 +139,7 @@ class PathTracer {
             // hit->t is the distance to the emitter only for a unit direction.
             KAPPA_DCHECK_LT(std::abs(dot(ray.d, ray.d) - 1.0f), 1e-5f);
             const float light_pdf =
-                pmf > 0.0f ? pmf * (hit->t * hit->t) / (cos_o * m_lights.area_of_triangle(hit->triangle)) : 0.0f;
+                pmf > 0.0f ? pmf * (hit->t * hit->t) / (std::abs(cos_o) * m_lights.area_of_triangle(hit->triangle)) : 0.0f;
             L += beta * Le * power_heuristic(prev_bsdf_pdf, light_pdf);
           } else if (pmf == 0.0f) {
             L += beta * Le;  // nee: a light only BSDF sampling finds
@@ -338,7 +338,9 @@ class PathTracer {
       if (!(dist2 > 0.0f)) return std::nullopt;
       const Vec3f wi = to_light / std::sqrt(dist2);
       const float cos_s = dot(n, wi);
-      const float cos_l = -dot(lp.n, wi);
+      float cos_l = -dot(lp.n, wi);
+      // Its back: lit only by an emitter that emits both ways.
+      if (cos_l < 0.0f && m_scene.materials[m_scene.material_of[id]].emits_both_sides) cos_l = -cos_l;
       if ((!two_sided && cos_s <= 0.0f) || cos_s == 0.0f || cos_l <= 0.0f) return std::nullopt;
       const float light_pdf = m_lights.pmf(light) * dist2 / (cos_l * m_lights.area(light));
       if (!(light_pdf > 0.0f) || !std::isfinite(light_pdf)) return std::nullopt;

@@ -16,7 +16,10 @@ namespace kappa {
 struct Material {
   std::string name;
   Vec3f albedo{0.5f, 0.5f, 0.5f};  ///< base colour (Kd), in [0, 1]
-  Vec3f emission{0, 0, 0};         ///< Ke, radiance (W sr^-1 m^-2, scene units), one-sided
+  Vec3f emission{0, 0, 0};         ///< Ke, radiance (W sr^-1 m^-2, scene units), one-sided unless emits_both_sides
+  /// Emits from its back too (glTF's doubleSided, as Cycles' emission does);
+  /// an MTL's Ke emits towards its front only, as in pbrt and Mitsuba.
+  bool emits_both_sides = false;
   float roughness = 1;             ///< perceptual roughness in [0, 1]; GGX alpha = roughness^2
   float metallic = 0;              ///< in [0, 1]: mix(dielectric, metal, metallic)
   /// In [0, 1]: the opaque dielectric's Fresnel is scaled by 2 * specular

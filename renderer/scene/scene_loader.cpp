@@ -117,6 +117,19 @@ void check_camera(const std::filesystem::path& file, const CameraSpec& c) {
   if (!(length(right) > 1e-6)) fail(file, 0, "camera: 'up' is parallel to the viewing direction");
 }
 
+/// A film of `aspect` (width / height) whose longer side is the default's.
+void film_of_aspect(Scene& scene, float aspect) {
+  if (!(aspect > 0)) return;
+  const int side = std::max(scene.width, scene.height);
+  if (aspect >= 1) {
+    scene.width = side;
+    scene.height = std::clamp(int(std::lround(double(side) / double(aspect))), 1, kMaxFilmSide);
+  } else {
+    scene.height = side;
+    scene.width = std::clamp(int(std::lround(double(side) * double(aspect))), 1, kMaxFilmSide);
+  }
+}
+
 Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings, TaskProgress* progress) {
   const std::string text = read_input_file(file, "a scene file");
   const json root = parse_json(file, text);
@@ -174,7 +187,8 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings, Tas
     if (scene.environment_file.empty())
       warnings.push_back(located(file, 0, "environment_rotation_deg ignored: the environment is not an image"));
   }
-  if (root.contains("film")) {
+  const bool has_film = root.contains("film");
+  if (has_film) {
     const json& film = root["film"];
     if (!film.is_object()) field.bad("film", "an object {width, height}");
     field.unknown_keys(film, {"width", "height"}, "film.", warnings);
@@ -199,29 +213,22 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings, Tas
     if (!std::filesystem::exists(mesh, ec)) fail(file, 0, "mesh '" + mesh.string() + "' not found");
     load_mesh_file(mesh, scene, warnings, progress);
   }
-  if (!has_camera) {
+  if (has_camera) {
+    // The scene file's camera wins; --camera cannot pick a glTF one then.
+    if (!scene.cameras.empty())
+      warnings.push_back(located(file, 0, "its 'camera' is used, not the " + std::to_string(scene.cameras.size()) +
+                                              " camera(s) of its glTF files"));
+    scene.cameras.clear();
+  } else if (!scene.cameras.empty()) {
+    // No camera of its own: its glTF files' first, as for a bare glTF file.
+    scene.camera = scene.cameras.front().spec;
+    scene.camera_index = 0;
+    if (!has_film) film_of_aspect(scene, scene.cameras.front().aspect);
+  } else {
     scene.camera = framing_camera(scene.bounds(), 39.3077f, float(scene.width) / float(scene.height));
     scene.camera_framed = true;
   }
-  if (!scene.cameras.empty())
-    warnings.push_back(located(file, 0, std::to_string(scene.cameras.size()) +
-                                            " glTF camera(s) in the meshes not used: a scene file's camera is its "
-                                            "'camera' field (or the framing camera)"));
-  scene.cameras.clear();
   return scene;
-}
-
-/// A film of `aspect` (width / height) whose longer side is the default's.
-void film_of_aspect(Scene& scene, float aspect) {
-  if (!(aspect > 0)) return;
-  const int side = std::max(scene.width, scene.height);
-  if (aspect >= 1) {
-    scene.width = side;
-    scene.height = std::clamp(int(std::lround(double(side) / double(aspect))), 1, kMaxFilmSide);
-  } else {
-    scene.height = side;
-    scene.width = std::clamp(int(std::lround(double(side) * double(aspect))), 1, kMaxFilmSide);
-  }
 }
 
 /// A bare glTF file: lit as a bare OBJ is (environment 1) besides its own

@@ -77,6 +77,17 @@ void require_valid_scene(const Scene& scene) {
               scene.environment.z >= 0);
   KAPPA_CHECK_GT(scene.width, 0);
   KAPPA_CHECK_GT(scene.height, 0);
+  for (const NamedCamera& c : scene.cameras) {
+    KAPPA_CHECK(finite(c.spec.eye) && finite(c.spec.look_at) && finite(c.spec.up));
+    KAPPA_CHECK(length(cross(c.spec.look_at - c.spec.eye, c.spec.up)) > 0.0f);
+    KAPPA_CHECK(std::isfinite(c.spec.vfov_deg) && c.spec.vfov_deg > 0 && c.spec.vfov_deg < 180);
+  }
+  for (const PunctualLight& l : scene.punctual_lights) {
+    KAPPA_CHECK(finite(l.position) && within_limit(l.position) && finite(l.direction) && finite(l.intensity));
+    KAPPA_CHECK(l.intensity.x >= 0 && l.intensity.y >= 0 && l.intensity.z >= 0);
+    KAPPA_CHECK(std::isfinite(l.cos_inner) && std::isfinite(l.cos_outer));
+  }
+  for (const TextureMap& m : scene.texture_maps) KAPPA_CHECK(finite(m.factor));
 }
 
 void load_and_check(const std::filesystem::path& file) {

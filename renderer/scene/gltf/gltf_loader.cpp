@@ -319,12 +319,20 @@ class GltfLoader {
     const Vec3d forward = node.world.vector({0, 0, -1}), up = node.world.vector({0, 1, 0});
     if (!(length(forward) > 0) || !(length(cross(forward, up)) > 0))
       fail(m_file, 0, p + ": the camera's transform is degenerate (scale 0)");
+    for (double c : {eye.x, eye.y, eye.z})
+      if (!(std::abs(c) <= kMaxCoordinate))
+        fail(m_file, 0, p + ": the camera lies at " + std::to_string(c) + ", past Kappa's coordinate limit of 1e12");
     NamedCamera named;
     named.name = cam.name.empty() ? "camera " + std::to_string(index) : cam.name;
     named.file_index = index;
     named.spec.eye = Vec3f(eye);
-    named.spec.look_at = Vec3f(eye + normalize(forward));
+    // A point ahead far enough that single precision tells it from the eye.
+    const double ahead = std::max({1.0, std::abs(eye.x), std::abs(eye.y), std::abs(eye.z)});
+    named.spec.look_at = Vec3f(eye + normalize(forward) * ahead);
     named.spec.up = Vec3f(normalize(up));
+    const Vec3f view = named.spec.look_at - named.spec.eye;
+    if (!(length(cross(view, named.spec.up)) > 0))
+      fail(m_file, 0, p + ": the camera's transform is degenerate (its view and up directions are parallel)");
     named.spec.vfov_deg = float(yfov * 180.0 / 3.14159265358979323846);
     named.aspect = float(aspect);
     m_scene.cameras.push_back(std::move(named));
@@ -353,11 +361,18 @@ class GltfLoader {
     }
     if (!(l.intensity >= 0) || !std::isfinite(l.intensity)) fail(m_file, 0, lp + "/intensity: must be finite and non-negative");
     light.intensity = Vec3f(colour * (l.intensity / kLumensPerWatt));
+    if (!std::isfinite(light.intensity.x + light.intensity.y + light.intensity.z) ||
+        !(std::max({light.intensity.x, light.intensity.y, light.intensity.z}) < 1e30f))
+      fail(m_file, 0, lp + ": color x intensity does not fit single precision (Kappa's radiance)");
     if (l.range != 0) {
       light.range = float(l.range);
       m_warnings.once("light range", lp + "/range", "a light's range is not modelled: it lights without a cut-off");
     }
-    light.position = Vec3f(node.world.point({0, 0, 0}));
+    const Vec3d position = node.world.point({0, 0, 0});
+    for (double c : {position.x, position.y, position.z})
+      if (!(std::abs(c) <= kMaxCoordinate))
+        fail(m_file, 0, p + ": the light lies at " + std::to_string(c) + ", past Kappa's coordinate limit of 1e12");
+    light.position = Vec3f(position);
     const Vec3d d = node.world.vector({0, 0, -1});
     if (l.type != "point") {
       if (!(length(d) > 0)) fail(m_file, 0, p + ": the light's transform is degenerate (scale 0)");

@@ -255,12 +255,13 @@ Material GltfMaterials::convert(int index) {
   if (g.occlusionTexture.index >= 0)
     m_warnings.once("occlusionTexture", p + "/occlusionTexture",
                     "occlusion maps are ignored: the path tracer finds occlusion itself");
+  // Double-sided: an emitter emits from both sides (as Cycles renders
+  // Blender's import); every surface reflects on both sides either way.
   if (!g.doubleSided)
     m_warnings.once("doubleSided", p + "/doubleSided",
                     "false: back faces are not culled; Kappa's surfaces reflect on both sides, as Cycles renders them");
-  else if (m.emissive())
-    m_warnings.once("doubleSided emission", p + "/doubleSided",
-                    "true on an emissive material: Kappa's emitters emit from their front only");
+  else
+    m.emits_both_sides = m.emissive();
   return m;
 }
 

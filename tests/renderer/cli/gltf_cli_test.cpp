@@ -88,6 +88,33 @@ TEST(GltfCli, CameraPicksAGltfCameraByNameOrIndexAndItsAspectSetsTheFilm) {
   EXPECT_FALSE(std::filesystem::exists(tmp / "o.exr"));
 }
 
+TEST(GltfCli, AMaskMaterialIsCutOutWhereItsAlphaIsBelowTheCutoffInEveryAccelerator) {
+  // mask.glb: a 2 x 2 quad at z = 0 whose texture is opaque in its left half
+  // (alpha 255) and transparent in its right (alpha 0); seen head-on, filling
+  // the middle of the film. The first hit's albedo is the quad's (1) where it
+  // is opaque, 0 where the ray passes through into the empty world.
+  test::TempDir tmp;
+  test::write_file(tmp / "scene.json",
+                   nlohmann::json{{"meshes", {(gltf_dir() / "mask.glb").string()}},
+                                  {"camera", {{"eye", {0, 0, 4}}, {"look_at", {0, 0, 0}}, {"up", {0, 1, 0}},
+                                              {"vfov_deg", 20}}},
+                                  {"film", {{"width", 16}, {"height", 16}}}}
+                       .dump());
+  for (const char* accel : {"naive", "grid", "grid2", "embree"}) {
+    const Rendered r = render(tmp / "scene.json", {"--aov", "albedo", "--accel", accel});
+    const int g = r.image.channel("albedo.G");
+    ASSERT_GE(g, 0);
+    const std::size_t stride = r.image.channels.size();
+    auto albedo = [&](int x, int y) { return r.image.pixels[(std::size_t(y) * 16 + std::size_t(x)) * stride + std::size_t(g)]; };
+    // Rows through the quad's middle: columns 5-6 lie on its left half, 9-10 on its right.
+    for (int y = 6; y <= 9; ++y) {
+      for (int x : {5, 6}) EXPECT_GT(albedo(x, y), 0.9f) << accel << " " << x << "," << y;
+      for (int x : {9, 10}) EXPECT_EQ(albedo(x, y), 0.0f) << accel << " " << x << "," << y;
+    }
+    EXPECT_GT(r.report["rays"]["camera"]["alpha_tests"].get<long>(), 0) << accel;
+  }
+}
+
 TEST(GltfCli, ABadGltfFileIsOneLineWithExitTwo) {
   test::TempDir tmp;
   test::write_file(tmp / "bad.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "../x.bin", "byteLength": 4}]})");

@@ -1,11 +1,14 @@
-// glTF's punctual lights (Scene::punctual_lights) in next-event estimation:
-// a point light at distance d gives the irradiance I/d^2, a spot light's
-// cone falls off as KHR_lights_punctual's reference does, a directional
-// light casts the shadow of what blocks it, and each adds to the other
-// lights without a MIS weight (BSDF sampling alone cannot find them).
+// glTF's lights. Punctual lights (Scene::punctual_lights) in next-event
+// estimation: a point light at distance d gives the irradiance I/d^2, a spot
+// light's cone falls off as KHR_lights_punctual's reference does, a
+// directional light casts the shadow of what blocks it, and each adds to the
+// other lights without a MIS weight (BSDF sampling alone cannot find them).
+// A double-sided emitter (Material::emits_both_sides) lights its back as its
+// front.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 #include <numbers>
 
 #include "renderer/render/render_helpers.h"
@@ -142,6 +145,45 @@ TEST(PunctualLights, AddToTriangleLightsWithoutAWeightAndKeepEveryAcceleratorsIm
   const double added = test::channel_stats(naive, 1).mean - test::channel_stats(without, 1).mean;
   const double expected = kAlbedo / kPi * 3.0 / 4.0;
   EXPECT_NEAR(added, expected, 0.03 * expected);
+}
+
+TEST(EmittersBothSides, ADoubleSidedEmitterLightsFromItsBackWhatItsFrontWould) {
+  // A 1 x 1 emitter 1 above the floor, facing down (its front to the floor)
+  // or up (its back), one-sided or both ways, by every strategy.
+  auto render_with = [](bool facing_down, bool both, LightSampling strategy) {
+    Scene s = floor_scene();
+    Material light;
+    light.name = "light";
+    light.albedo = {0, 0, 0};
+    light.emission = {2, 2, 2};
+    light.emits_both_sides = both;
+    s.materials.push_back(light);
+    Triangle a{{-0.5f, 1, -0.5f}, {0.5f, 1, -0.5f}, {0.5f, 1, 0.5f}};
+    Triangle b{{-0.5f, 1, -0.5f}, {0.5f, 1, 0.5f}, {-0.5f, 1, 0.5f}};
+    if (!facing_down) {  // counter-clockwise seen from above: the normal points up
+      std::swap(a.v1, a.v2);
+      std::swap(b.v1, b.v2);
+    }
+    s.triangles.push_back(a);
+    s.triangles.push_back(b);
+    s.material_of = {0, 0, 1, 1};
+    s.camera = looking_down_at(0.3f, 0.2f, 0.5f);
+    s.width = s.height = 8;
+    RenderSettings settings;
+    settings.spp = test::scaled(256, 64);
+    settings.max_depth = 1;
+    settings.light_sampling = strategy;
+    return test::channel_stats(test::render_scene(s, settings, "grid"), 1);
+  };
+  for (LightSampling strategy : {LightSampling::mis, LightSampling::nee, LightSampling::bsdf}) {
+    const test::ChannelStats front = render_with(true, false, strategy);
+    const test::ChannelStats back_one_sided = render_with(false, false, strategy);
+    const test::ChannelStats back_both = render_with(false, true, strategy);
+    EXPECT_GT(front.mean, 0.05) << light_sampling_name(strategy);
+    EXPECT_EQ(back_one_sided.mean, 0.0) << light_sampling_name(strategy);
+    EXPECT_NEAR(back_both.mean, front.mean, 4.0 * (front.standard_error + back_both.standard_error) + 1e-4)
+        << light_sampling_name(strategy);
+  }
 }
 
 }  // namespace
