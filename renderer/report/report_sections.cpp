@@ -50,7 +50,8 @@ nlohmann::ordered_json report_header(const Scene& scene, const Accelerator& acce
                          {"materials", g.materials}, {"images", g.images}});
   j["camera"] = nullptr;
   if (scene.camera_index >= 0)
-    j["camera"] = {{"name", scene.cameras[std::size_t(scene.camera_index)].name}, {"index", scene.camera_index}};
+    j["camera"] = {{"name", scene.cameras[std::size_t(scene.camera_index)].name},
+                   {"index", scene.cameras[std::size_t(scene.camera_index)].file_index}};
   j["punctual_lights"] = scene.punctual_lights.size();
   j["accel"] = std::string(accel.name());
   j["accel_choice"] = nullptr;  // how --accel auto chose, in a render that asked for it

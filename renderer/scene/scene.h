@@ -57,7 +57,7 @@ struct NamedCamera {
 /// A light no ray can hit (glTF's KHR_lights_punctual): found only by
 /// next-event estimation. Intensities are in Kappa's units (see
 /// docs/scene-format.md): point and spot lights in W sr^-1 (candela / 683),
-/// directional lights in W m^-2 (lux / 683), as Blender's importer converts.
+/// directional lights in W m^-2 (lux / 683), the conversion Blender 3.4's glTF exporter makes.
 struct PunctualLight {
   enum class Type : unsigned char { point, spot, directional };
   Type type = Type::point;
@@ -114,6 +114,7 @@ struct Scene {
   std::shared_ptr<const EnvironmentImage> environment_image;
   int width = 512;
   int height = 512;
+  bool film_given = false;  ///< the scene file gives the film: a camera's aspect does not change it
   /// Seconds load_scene took to read, check and parse the files (reported
   /// apart from the accelerator's build and the render).
   double load_s = 0;

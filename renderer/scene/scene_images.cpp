@@ -122,6 +122,8 @@ void load_texture_maps(Scene& scene, ImageLibrary& lib, Warnings& warnings) {
       mask.height = f.height;
       mask.scale = map.scale;
       mask.offset = map.offset;
+      mask.wrap_s = map.wrap_s;
+      mask.wrap_t = map.wrap_t;
       mask.opaque.resize(std::size_t(f.width) * std::size_t(f.height));
       for (std::size_t i = 0; i < mask.opaque.size(); ++i)
         mask.opaque[i] =

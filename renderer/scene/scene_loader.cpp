@@ -188,6 +188,7 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings, Tas
       warnings.push_back(located(file, 0, "environment_rotation_deg ignored: the environment is not an image"));
   }
   const bool has_film = root.contains("film");
+  scene.film_given = has_film;
   if (has_film) {
     const json& film = root["film"];
     if (!film.is_object()) field.bad("film", "an object {width, height}");
@@ -291,10 +292,13 @@ void apply_view(Scene& scene, const std::string& camera, int width, int height) 
     scene.camera = scene.cameras[std::size_t(index)].spec;
     scene.camera_index = index;
     scene.camera_framed = false;
-    scene.width = scene.height = std::max(scene.width, scene.height);
-    film_of_aspect(scene, scene.cameras[std::size_t(index)].aspect);
+    if (!scene.film_given) {
+      scene.width = scene.height = std::max(scene.width, scene.height);
+      film_of_aspect(scene, scene.cameras[std::size_t(index)].aspect);
+    }
   }
-  const float aspect = scene.camera_index >= 0 ? scene.cameras[std::size_t(scene.camera_index)].aspect : 0.0f;
+  const float aspect =
+      scene.camera_index >= 0 && !scene.film_given ? scene.cameras[std::size_t(scene.camera_index)].aspect : 0.0f;
   if (width > 0) scene.width = width;
   if (height > 0) scene.height = height;
   if (aspect > 0 && (width > 0) != (height > 0)) {

@@ -74,6 +74,7 @@ struct OpacityMask {
   int width = 0, height = 0;
   std::vector<std::uint8_t> opaque;  ///< row 0 at the image's top
   Vec2f scale{1, 1}, offset{0, 0};   ///< its map's placement (TextureMap)
+  TextureWrap wrap_s = TextureWrap::periodic, wrap_t = TextureWrap::periodic;  ///< and its wrap
 };
 
 /// Per slot, the index of the map in Scene::texture_maps, or -1.

@@ -8,6 +8,7 @@
 // triangle test, still returns the same closest hit bitwise.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -55,18 +56,30 @@ class CutoutFilter {
     const Vec2f uv = uvs.uv[0] * h.b0 + uvs.uv[1] * h.b1 + uvs.uv[2] * h.b2;
     const float s = uv.u * mask.scale.u + mask.offset.u;
     const float t = 1.0f - (uv.v * mask.scale.v + mask.offset.v);
-    return mask.opaque[std::size_t(texel(t, mask.height)) * std::size_t(mask.width) + std::size_t(texel(s, mask.width))];
+    return mask.opaque[std::size_t(texel(t, mask.height, mask.wrap_t)) * std::size_t(mask.width) +
+                       std::size_t(texel(s, mask.width, mask.wrap_s))];
   }
 
  private:
   static constexpr std::int32_t kOpaque = -1, kInvisible = -2;
 
-  /// The texel a coordinate falls in, repeating (the map's wrap).
-  static std::int64_t texel(float c, int size) {
+  /// The texel a coordinate falls in, under the map's wrap (as the colour
+  /// lookup wraps: repeating, clamped to the edge, or mirrored).
+  static std::int64_t texel(float c, int size, TextureWrap wrap) {
     const double x = std::floor(double(c) * double(size));
     if (!std::isfinite(x) || std::abs(x) > 9e15) return 0;
-    const std::int64_t i = std::int64_t(x) % size;
-    return i < 0 ? i + size : i;
+    const std::int64_t n = size;
+    const std::int64_t i = std::int64_t(x);
+    switch (wrap) {
+      case TextureWrap::clamp: return std::clamp<std::int64_t>(i, 0, n - 1);
+      case TextureWrap::mirror: {
+        const std::int64_t m = ((i % (2 * n)) + 2 * n) % (2 * n);  // in [0, 2n)
+        return m < n ? m : 2 * n - 1 - m;
+      }
+      case TextureWrap::periodic: break;
+    }
+    const std::int64_t r = i % n;
+    return r < 0 ? r + n : r;
   }
 
   const Scene* m_scene;

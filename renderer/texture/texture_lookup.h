@@ -53,7 +53,9 @@ inline Vec3f lookup_colour(const TextureMap& map, Vec2f uv, const UvFootprint& f
 /// A scalar map: its channel (glTF), else the luminance of its colour (the
 /// value of a grey file), times its factor.
 inline float lookup_scalar(const TextureMap& map, Vec2f uv, const UvFootprint& fp) {
-  if (map.scalar_channel < 0 || map.scalar_channel >= map.channels) {
+  // A grey (or grey and alpha) file is grey in every colour channel, as
+  // glTF expands it: its luminance is its grey.
+  if (map.scalar_channel < 0 || map.channels < 3 || map.scalar_channel >= map.channels) {
     const Vec3f c = lookup_colour(map, uv, fp, 1.0f);
     return usable(0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z, 1.0f);
   }

@@ -1,5 +1,6 @@
 #include "renderer/scene/gltf/gltf_file.h"
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -53,7 +54,7 @@ GlbChunks split_glb(const std::filesystem::path& file, const std::string& bytes,
     fail(file, 0, "binary glTF: its header gives a length of " + std::to_string(length) + " bytes, the file has " +
                       std::to_string(bytes.size()));
   GlbChunks chunks;
-  std::size_t at = 12;
+  std::size_t at = 12, unknown = 0;
   for (int index = 0; at < bytes.size(); ++index) {
     if (bytes.size() - at < 8) fail(file, 0, "binary glTF: chunk " + std::to_string(index) + " header cut off at byte " + std::to_string(at));
     const std::uint32_t size = le32(bytes, at), type = le32(bytes, at + 4);
@@ -71,15 +72,18 @@ GlbChunks split_glb(const std::filesystem::path& file, const std::string& bytes,
     } else if (index == 1 && type == kChunkBin) {
       chunks.bin = bytes.substr(at, size);
       chunks.has_bin = true;
-    } else if (type == kChunkJson || type == kChunkBin) {
-      fail(file, 0, "binary glTF: chunk " + std::to_string(index) + " is a second " +
-                        (type == kChunkJson ? "JSON" : "BIN") + " chunk");
+    } else if (type == kChunkJson) {
+      fail(file, 0, "binary glTF: chunk " + std::to_string(index) + " is a second JSON chunk");
+    } else if (type == kChunkBin) {
+      fail(file, 0, "binary glTF: chunk " + std::to_string(index) + " is a BIN chunk, which may only be the second");
     } else {
-      warnings.push_back(located(file, 0, "binary glTF: chunk " + std::to_string(index) + " of unknown type " +
-                                              hex32(type) + " ignored, as the specification says"));
+      ++unknown;
     }
     at += size;
   }
+  if (unknown > 0)
+    warnings.push_back(located(file, 0, "binary glTF: " + std::to_string(unknown) +
+                                            " chunk(s) of unknown type ignored, as the specification says"));
   return chunks;
 }
 
@@ -176,6 +180,15 @@ UriTarget checked_uri(const std::filesystem::path& file, const json& value, cons
       fail(file, 0, pointer + ": a data URI that is not base64 (Kappa reads data:...;base64,...)");
     if (!base64_payload(uri.substr(comma + 1)))
       fail(file, 0, pointer + ": the data URI's payload is not valid base64");
+    // The media types tinygltf decodes (any other it would take for a file name).
+    static const char* const kTypes[] = {"application/octet-stream", "application/gltf-buffer", "image/jpeg",
+                                         "image/png", "image/bmp", "image/gif", "text/plain"};
+    bool known = false;
+    for (const char* t : kTypes) known |= header == std::string("data:") + t + ";base64";
+    if (!known)
+      fail(file, 0, pointer + ": data URI of media type '" + header.substr(5, header.size() - 12) +
+                        "' not read (application/octet-stream, application/gltf-buffer, image/png, image/jpeg, "
+                        "image/bmp, image/gif)");
     target.data = true;
     return target;
   }
@@ -195,6 +208,100 @@ UriTarget checked_uri(const std::filesystem::path& file, const json& value, cons
     fail(file, 0, pointer + ": " + e.what());
   }
   return target;
+}
+
+/// Keys whose value is an index into one of the file's arrays (and arrays of
+/// them): an integer in [0, 2^31 - 1], or tinygltf would truncate it or read
+/// a negative one as "absent".
+bool index_key(const std::string& key) {
+  static const std::set<std::string> keys = {"scene",  "camera",   "skin",   "mesh",   "material", "indices",
+                                             "bufferView", "buffer", "source", "sampler", "index", "light",
+                                             "node",   "input",    "output", "skeleton", "inverseBindMatrices"};
+  return keys.count(key) > 0;
+}
+bool index_array_key(const std::string& key) { return key == "nodes" || key == "children" || key == "joints"; }
+/// Keys whose value is a byte count or offset, or a count of elements.
+bool size_key(const std::string& key) {
+  return key == "byteOffset" || key == "byteLength" || key == "byteStride" || key == "count" || key == "texCoord";
+}
+
+void check_index(const std::filesystem::path& file, const json& v, const std::string& pointer) {
+  const double x = v.is_number() ? v.get<double>() : -1.0;
+  if (!v.is_number_integer() && !(v.is_number_float() && x == std::floor(x)))
+    fail(file, 0, pointer + ": must be an index (a whole number)");
+  if (!(x >= 0) || x > 2147483647.0) fail(file, 0, pointer + ": index " + v.dump() + " is out of range");
+}
+
+/// Every index and size in the document is a whole number in range (extras,
+/// the user's own data, aside). The depth is bounded (kMaxGltfJsonDepth).
+void check_integers(const std::filesystem::path& file, const json& root) {
+  struct Item {
+    const json* value;
+    std::string pointer;
+  };
+  std::vector<Item> stack = {{&root, ""}};
+  while (!stack.empty()) {
+    const Item item = stack.back();
+    stack.pop_back();
+    const json& v = *item.value;
+    if (v.is_object()) {
+      for (const auto& [key, child] : v.items()) {
+        const std::string p = item.pointer + "/" + key;
+        if (key == "extras") continue;
+        if (item.pointer.size() >= 11 && item.pointer.compare(item.pointer.size() - 11, 11, "/attributes") == 0) {
+          check_index(file, child, p);  // attribute name -> accessor
+          continue;
+        }
+        if (index_key(key) && child.is_number()) check_index(file, child, p);
+        else if (index_key(key) && !child.is_object() && !child.is_array()) check_index(file, child, p);
+        // (The top level's "nodes" is the array of nodes, a scene's its roots.)
+        if (index_array_key(key) && child.is_array() && !item.pointer.empty())
+          for (std::size_t k = 0; k < child.size(); ++k) check_index(file, child[k], p + "/" + std::to_string(k));
+        if (size_key(key)) {
+          const double x = child.is_number() ? child.get<double>() : -1.0;
+          if (!child.is_number() || !(x >= 0) || x != std::floor(x) || x > 9007199254740992.0)
+            fail(file, 0, p + ": must be a whole number from 0 to 2^53");
+        }
+        if (child.is_structured()) stack.push_back({&child, p});
+      }
+    } else if (v.is_array()) {
+      for (std::size_t k = 0; k < v.size(); ++k)
+        if (v[k].is_structured()) stack.push_back({&v[k], item.pointer + "/" + std::to_string(k)});
+    }
+  }
+}
+
+/// The bytes a data URI holds (its base64 payload decoded).
+std::size_t data_uri_size(const std::string& uri) {
+  const std::size_t comma = uri.find(',');
+  const std::size_t n = uri.size() - comma - 1;
+  std::size_t pad = 0;
+  for (std::size_t k = uri.size(); k > comma + 1 && uri[k - 1] == '='; --k) ++pad;
+  return n / 4 * 3 - pad;
+}
+
+/// Every buffer view lies inside its buffer (whose real size `sizes` gives):
+/// tinygltf hands an image's buffer view to the image loader unchecked.
+void check_buffer_views(const std::filesystem::path& file, const json& root, const std::vector<std::size_t>& sizes) {
+  if (!root.contains("bufferViews")) return;
+  const json& views = root["bufferViews"];
+  if (!views.is_array()) fail(file, 0, "/bufferViews: must be an array");
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const std::string p = json_pointer({"bufferViews", std::to_string(i)});
+    const json& v = views[i];
+    if (!v.is_object() || !v.contains("buffer") || !v.contains("byteLength"))
+      fail(file, 0, p + ": needs buffer and byteLength");
+    const double b = v["buffer"].get<double>();
+    if (b >= double(sizes.size())) fail(file, 0, p + "/buffer: " + v["buffer"].dump() + " does not exist");
+    const std::size_t size = sizes[std::size_t(b)];
+    const double offset = v.contains("byteOffset") ? v["byteOffset"].get<double>() : 0.0;
+    const double length = v["byteLength"].get<double>();
+    if (offset + length > double(size))
+      fail(file, 0, p + ": bytes " + std::to_string(std::uint64_t(offset)) + " to " +
+                        std::to_string(std::uint64_t(offset + length)) + " lie outside its buffer's " +
+                        std::to_string(size) + " bytes");
+    if (length > 2147483647.0) fail(file, 0, p + "/byteLength: over 2^31 - 1 bytes (tinygltf's limit for a view)");
+  }
 }
 
 /// The files tinygltf asks for, served from memory: every external buffer is
@@ -232,6 +339,7 @@ bool served_write(std::string* err, const std::string&, const std::vector<unsign
 /// Keeps an image's bytes as they are (decoded later through OpenImageIO).
 bool keep_image_bytes(tinygltf::Image* image, int, std::string*, std::string*, int, int, const unsigned char* bytes,
                       int size, void*) {
+  if (size <= 0 || !bytes) return false;
   image->image.assign(bytes, bytes + size);
   image->as_is = true;
   return true;
@@ -291,6 +399,20 @@ GltfFile read_gltf(const std::filesystem::path& file, Warnings& warnings) {
   const std::string version = (*asset)["version"].get<std::string>();
   if (version.rfind("2.", 0) != 0) fail(file, 0, "/asset/version: '" + version + "', not glTF 2.x");
 
+  check_integers(file, root);
+  if (root.contains("extensionsUsed") && root["extensionsUsed"].is_array()) {
+    // What no other warning names: an extension used somewhere Kappa does not
+    // look (a node's EXT_mesh_gpu_instancing, a mesh's compression, ...).
+    static const std::set<std::string> warned_where_used = {
+        "KHR_texture_transform", "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_volume",
+        "KHR_materials_iridescence", "KHR_materials_anisotropy", "KHR_materials_unlit", "KHR_materials_dispersion",
+        "KHR_materials_variants", "KHR_texture_basisu", "EXT_texture_webp", "MSFT_texture_dds"};
+    for (const json& name : root["extensionsUsed"])
+      if (name.is_string() && !read_extensions().count(name.get<std::string>()) &&
+          !warned_where_used.count(name.get<std::string>()))
+        warnings.push_back(located(file, 0, "/extensionsUsed: " + name.get<std::string>() +
+                                                " is not read: what it adds is ignored"));
+  }
   if (root.contains("extensionsRequired")) {
     const json& required = root["extensionsRequired"];
     if (!required.is_array()) fail(file, 0, "/extensionsRequired: must be an array of names");
@@ -305,6 +427,7 @@ GltfFile read_gltf(const std::filesystem::path& file, Warnings& warnings) {
 
   // Buffers: external ones read here and served to tinygltf from memory.
   ServedBuffers served;
+  std::vector<std::size_t> buffer_sizes;
   if (root.contains("buffers")) {
     json& buffers = root["buffers"];
     if (!buffers.is_array()) fail(file, 0, "/buffers: must be an array");
@@ -315,17 +438,30 @@ GltfFile read_gltf(const std::filesystem::path& file, Warnings& warnings) {
       if (!b.contains("uri")) {
         if (!(binary && i == 0 && chunks.has_bin))
           fail(file, 0, pointer + ": no uri, and it is not a binary glTF's first buffer with a BIN chunk");
+        buffer_sizes.push_back(chunks.bin.size());
         continue;
       }
       const UriTarget target = checked_uri(file, b["uri"], pointer + "/uri", "a glTF buffer");
-      if (target.data) continue;
+      if (target.data) {
+        buffer_sizes.push_back(data_uri_size(b["uri"].get<std::string>()));
+        continue;
+      }
       const std::string content = read_input_file(target.path, "a glTF buffer");
+      buffer_sizes.push_back(content.size());
       const std::string token = "kappa-buffer-" + std::to_string(i);
       served.bytes[token].assign(content.begin(), content.end());
       b["uri"] = token;
       out.external_files.push_back(target.path);
     }
   }
+  // Each buffer's declared byteLength may not exceed what it holds (tinygltf
+  // checks an external file's exactly), and views lie within the real size.
+  for (std::size_t i = 0; i < buffer_sizes.size(); ++i) {
+    const json& b = root["buffers"][i];
+    if (b.contains("byteLength") && b["byteLength"].is_number() && b["byteLength"].get<double>() < double(buffer_sizes[i]))
+      buffer_sizes[i] = std::size_t(b["byteLength"].get<double>());
+  }
+  check_buffer_views(file, root, buffer_sizes);
   std::vector<std::filesystem::path> image_files;
   if (root.contains("images")) {
     const json& images = root["images"];

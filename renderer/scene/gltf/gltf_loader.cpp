@@ -10,13 +10,14 @@
 #include "renderer/scene/gltf/gltf_material.h"
 #include "renderer/scene/gltf/gltf_transform.h"
 #include "renderer/scene/gltf/gltf_warnings.h"
+#include "core/physical_memory.h"
 #include "renderer/scene/obj/obj_limits.h"
 
 namespace kappa {
 namespace {
 
 /// Photometric to radiometric, at the 683 lm/W of the extension's units
-/// (and of Blender's importer): candela to W/sr, lux to W/m^2.
+/// (and of Blender 3.4's glTF exporter): candela to W/sr, lux to W/m^2.
 constexpr double kLumensPerWatt = 683.0;
 
 struct Placed {
@@ -35,12 +36,16 @@ Affine local_transform(const std::filesystem::path& file, const tinygltf::Node& 
     return true;
   };
   const bool has_matrix = finite(n.matrix, "matrix", 16);
+  // (tinygltf reads no translation/rotation/scale beside a matrix.)
   const bool has_t = finite(n.translation, "translation", 3), has_r = finite(n.rotation, "rotation", 4),
              has_s = finite(n.scale, "scale", 3);
   if (has_matrix) {
-    if (has_t || has_r || has_s)
-      warnings.once("matrix and TRS", p, "has both a matrix and translation/rotation/scale: the matrix is used");
-    return Affine::from_column_major(n.matrix.data());
+    // Column-major: the bottom row is elements 3, 7, 11, 15. glTF's node
+    // matrices are affine (decomposable into TRS).
+    const double* m = n.matrix.data();
+    if (std::abs(m[3]) > 1e-6 || std::abs(m[7]) > 1e-6 || std::abs(m[11]) > 1e-6 || std::abs(m[15] - 1) > 1e-6)
+      fail(file, 0, p + "/matrix: its last row is not (0, 0, 0, 1): not an affine transform, which glTF requires");
+    return Affine::from_column_major(m);
   }
   if (!has_t && !has_r && !has_s) return Affine{};
   double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1};
@@ -70,6 +75,7 @@ class GltfLoader {
     m_summary.materials = m_model.materials.size();
     m_summary.images = m_model.images.size();
     const std::vector<Placed> placed = walk_nodes();
+    check_triangle_budget(placed);
     for (const Placed& node : placed) {
       const tinygltf::Node& n = m_model.nodes[std::size_t(node.node)];
       const std::string p = json_pointer({"nodes", std::to_string(node.node)});
@@ -103,11 +109,27 @@ class GltfLoader {
       m_warnings.once("scenes", "/scenes", std::to_string(m_model.scenes.size()) + " scenes: only scene " +
                                                std::to_string(scene) + " (the default) is rendered");
     if (scene >= 0) {
+      std::vector<int> parent(n, -1);
+      for (std::size_t i = 0; i < n; ++i)
+        for (int c : m_model.nodes[i].children)
+          if (c >= 0 && std::size_t(c) < n) parent[std::size_t(c)] = int(i);
       const std::vector<int>& list = m_model.scenes[std::size_t(scene)].nodes;
       for (std::size_t k = 0; k < list.size(); ++k) {
+        const std::string sp = json_pointer({"scenes", std::to_string(scene), "nodes", std::to_string(k)});
         if (list[k] < 0 || std::size_t(list[k]) >= n)
-          fail(m_file, 0, json_pointer({"scenes", std::to_string(scene), "nodes", std::to_string(k)}) + ": node " +
-                              std::to_string(list[k]) + " does not exist (" + std::to_string(n) + " nodes)");
+          fail(m_file, 0, sp + ": node " + std::to_string(list[k]) + " does not exist (" + std::to_string(n) + " nodes)");
+        if (const int up = parent[std::size_t(list[k])]; up >= 0) {
+          // Its own ancestor (a cycle), or below a root: either way not a root.
+          int at = up;
+          for (std::size_t step = 0; at >= 0 && at != list[k] && step < n; ++step) at = parent[std::size_t(at)];
+          const std::vector<int>& siblings = m_model.nodes[std::size_t(up)].children;
+          const auto slot = std::size_t(std::find(siblings.begin(), siblings.end(), list[k]) - siblings.begin());
+          if (at == list[k])
+            fail(m_file, 0, json_pointer({"nodes", std::to_string(up), "children", std::to_string(slot)}) + ": node " +
+                                std::to_string(list[k]) + " is its own ancestor (a cycle): glTF's nodes form trees");
+          fail(m_file, 0, sp + ": node " + std::to_string(list[k]) + " is not a root (node " + std::to_string(up) +
+                              " is its parent): a scene lists roots");
+        }
         roots.push_back(list[k]);
       }
     } else {
@@ -150,6 +172,34 @@ class GltfLoader {
     return out;
   }
 
+  /// Refuses, before a triangle is copied, a file whose instances would
+  /// make more triangles than Kappa's 32-bit ids or this machine's memory
+  /// hold: a mesh reused by many nodes, or accessors reused by many
+  /// primitives, cost the file a few bytes each.
+  void check_triangle_budget(const std::vector<Placed>& placed) const {
+    const double bytes_per_triangle = double(sizeof(Triangle) + sizeof(std::uint32_t) + sizeof(TriangleNormals) +
+                                             sizeof(TriangleUVs));
+    const double memory = double(physical_memory_bytes());
+    double total = double(m_scene.triangles.size());
+    for (const Placed& node : placed) {
+      const int mesh = m_model.nodes[std::size_t(node.node)].mesh;
+      if (mesh < 0 || std::size_t(mesh) >= m_model.meshes.size()) continue;  // refused when placed
+      for (const tinygltf::Primitive& prim : m_model.meshes[std::size_t(mesh)].primitives) {
+        int accessor = prim.indices;
+        if (accessor < 0) {
+          const auto it = prim.attributes.find("POSITION");
+          accessor = it == prim.attributes.end() ? -1 : it->second;
+        }
+        if (accessor < 0 || std::size_t(accessor) >= m_model.accessors.size()) continue;
+        total += double(m_model.accessors[std::size_t(accessor)].count);  // at most one triangle a vertex
+      }
+      if (total >= double(kNoTriangle) || (memory > 0 && total / 3.0 * bytes_per_triangle > memory))
+        fail(m_file, 0, json_pointer({"nodes", std::to_string(node.node)}) + ": the scene's mesh instances up to here " +
+                            "make up to " + std::to_string(std::uint64_t(total)) + " triangles, more than Kappa's " +
+                            "32-bit triangle ids or this machine's memory hold (meshes are copied per node)");
+    }
+  }
+
   void add_mesh_instance(const Placed& node, const std::string& p) {
     const tinygltf::Node& n = m_model.nodes[std::size_t(node.node)];
     if (std::size_t(n.mesh) >= m_model.meshes.size())
@@ -174,6 +224,8 @@ class GltfLoader {
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
       fail(m_file, 0, p + "/mode: " + std::to_string(mode) + " is not a glTF primitive mode (0 to 6)");
     if (!prim.targets.empty()) m_warnings.once("targets", p + "/targets", "morph targets are not applied");
+    if (prim.attributes.count("COLOR_0"))
+      m_warnings.once("COLOR_0", p + "/attributes/COLOR_0", "vertex colours are not modelled: ignored");
     const auto attr = [&](const char* name) {
       const auto it = prim.attributes.find(name);
       return it == prim.attributes.end() ? -1 : it->second;
@@ -238,6 +290,9 @@ class GltfLoader {
         const Vec3d n = identity ? r.vec3(i) : world.normal(r.vec3(i));
         const double len = length(n);
         normals[i] = len > 0 && std::isfinite(len) ? Vec3f(n / len) : Vec3f{0, 0, 0};
+        if (normals[i] == Vec3f{0, 0, 0})
+          m_warnings.once("bad normal", r.pointer(), "a normal that is zero, NaN or infinite (element " +
+                                                         std::to_string(i) + "): its triangles are shaded flat");
       }
     }
     std::vector<Vec2f> uvs;

@@ -13,8 +13,9 @@ double checked_factor(const std::filesystem::path& file, double v, double lo, do
                       GltfWarnings& warnings) {
   if (!std::isfinite(v)) fail(file, 0, pointer + ": not a finite number");
   const double c = std::clamp(v, lo, hi);
+  // One warning a kind of factor (its key), not one a material.
   if (c != v)
-    warnings.once("range " + pointer, pointer,
+    warnings.once("range " + pointer.substr(pointer.find_last_of('/') + 1), pointer,
                   std::to_string(v) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "], clamped");
   return c;
 }

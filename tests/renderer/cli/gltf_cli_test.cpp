@@ -58,7 +58,7 @@ TEST(GltfCli, TheReportNamesTheGltfFileAndItsCounts) {
   const nlohmann::json& g = r.report["gltf"][0];
   EXPECT_NE(g["file"].get<std::string>().find("primitives.gltf"), std::string::npos);
   EXPECT_EQ(g["triangles"], 10);  // the shared mesh copied for its two nodes
-  EXPECT_GE(g["mesh_instances"].get<int>(), 4);
+  EXPECT_EQ(g["mesh_instances"], 5);  // gen.py: four meshes, the shared one placed twice
   EXPECT_EQ(r.report["punctual_lights"], 0);
   // An OBJ scene has none.
   EXPECT_TRUE(render(gltf_dir() / "twin.obj", {"--width", "8", "--height", "8"}).report["gltf"].empty());
@@ -69,6 +69,7 @@ TEST(GltfCli, CameraPicksAGltfCameraByNameOrIndexAndItsAspectSetsTheFilm) {
   EXPECT_EQ(first.image.width, 512);
   EXPECT_EQ(first.image.height, 256);  // "wide": aspect 2
   EXPECT_EQ(first.report["camera"]["name"], "wide");
+  EXPECT_EQ(first.report["camera"]["index"], 1);  // its index in the file's cameras (0 is orthographic)
   const Rendered tele = render(gltf_dir() / "cameras.gltf", {"--camera", "tele", "--width", "20", "--height", "10"});
   EXPECT_EQ(tele.report["camera"]["name"], "tele");
   EXPECT_EQ(tele.image.width, 20);

@@ -387,5 +387,67 @@ TEST(GltfBadInput, AccessorCountThatWrapsTheBoundsArithmetic) {
   expect_refused(dir, d, {"/accessors/0"});
 }
 
+// An image whose buffer view lies past its buffer: tinygltf hands such a view
+// to the image loader unchecked, so the reader checks every view first.
+TEST(GltfBadInput, ImageBufferViewPastItsBuffer) {
+  test::TempDir dir;
+  Doc d;
+  d.buffer_views = R"([{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 30, "byteLength": 1000}])";
+  d.more = R"("images": [{"bufferView": 1, "mimeType": "image/png"}], )";
+  expect_refused(dir, d, {"/bufferViews/1", "outside its buffer"});
+}
+
+// Indices tinygltf would truncate (2^32 reads as 0) or take for "absent"
+// (a negative one), or a fraction: refused, never read as another element.
+TEST(GltfBadInput, IndicesOutOfRangeNegativeOrFractional) {
+  test::TempDir dir;
+  for (const char* nodes : {R"([{"mesh": 4294967296}])", R"([{"mesh": -2}])", R"([{"mesh": 0.5}])",
+                            R"([{"mesh": "0"}])"}) {
+    SCOPED_TRACE(nodes);
+    Doc d;
+    d.nodes = nodes;
+    expect_refused(dir, d, {"/nodes/0/mesh", "index"});
+  }
+  Doc d;
+  d.meshes = R"([{"primitives": [{"attributes": {"POSITION": 0}, "indices": -2}]}])";
+  expect_refused(dir, d, {"/meshes/0/primitives/0/indices", "index"});
+  Doc c;
+  c.scenes = R"([{"nodes": [2147483648]}])";
+  expect_refused(dir, c, {"/scenes/0/nodes/0", "out of range"});
+}
+
+TEST(GltfBadInput, ASceneListingANodeThatIsNotARoot) {
+  test::TempDir dir;
+  Doc d;
+  d.nodes = R"([{"children": [1]}, {"mesh": 0}])";
+  d.scenes = R"([{"nodes": [1]}])";
+  expect_refused(dir, d, {"/scenes/0/nodes/0", "not a root"});
+}
+
+TEST(GltfBadInput, AMatrixThatIsNotAffine) {
+  test::TempDir dir;
+  Doc d;
+  d.nodes = R"([{"mesh": 0, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0.5, 0,0,0,1]}])";
+  expect_refused(dir, d, {"/nodes/0/matrix", "affine"});
+}
+
+TEST(GltfBadInput, ADataUriOfAMediaTypeTinygltfDoesNotDecode) {
+  test::TempDir dir;
+  Doc d;
+  d.buffers = R"([{"byteLength": 36, "uri": "data:image/webp;base64,)" + base64(triangle_bytes()) + R"("}])";
+  expect_refused(dir, d, {"/buffers/0/uri", "image/webp"});
+}
+
+// Instances cost the file a few bytes each and the scene their triangles:
+// counted before any is copied, refused past Kappa's 32-bit triangle ids.
+TEST(GltfBadInput, InstancesBeyondTheTriangleLimitAreRefusedBeforeCopying) {
+  test::TempDir dir;
+  Doc d;
+  d.accessors = R"([{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+                    {"bufferView": 0, "componentType": 5125, "count": 5000000001, "type": "SCALAR"}])";
+  d.meshes = R"([{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}])";
+  expect_refused(dir, d, {"/nodes/0", "32-bit triangle ids"});
+}
+
 }  // namespace
 }  // namespace kappa

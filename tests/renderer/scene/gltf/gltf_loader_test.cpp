@@ -457,5 +457,39 @@ TEST(GltfLoader, SceneJsonMixesObjAndGltf) {
   EXPECT_TRUE(has_input(dir / "t.obj"));
 }
 
+// A mirroring node keeps the front face (glTF: a negative determinant turns
+// the winding, so the loader swaps two corners), and normals are carried by
+// the inverse transpose (a non-uniform scale bends them).
+TEST(GltfLoader, MirroredAndNonUniformlyScaledNodesKeepTheFrontAndBendNormals) {
+  test::TempDir dir;
+  // One triangle (0,0,0) (1,0,0) (0,1,0), facing +z, its vertex normals (1,1,0)/sqrt2.
+  const float r = float(1.0 / std::sqrt(2.0));
+  const float data[18] = {0, 0, 0, 1, 0, 0, 0, 1, 0, r, r, 0, r, r, 0, r, r, 0};
+  test::write_file(dir / "tri.bin", std::string(reinterpret_cast<const char*>(data), sizeof data));
+  test::write_file(dir / "m.gltf", R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+    "nodes": [{"mesh": 0, "scale": [-1, 1, 1]}, {"mesh": 0, "scale": [2, 1, 1], "translation": [0, 0, 5]}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}}]}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+                  {"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 3, "type": "VEC3"}],
+    "bufferViews": [{"buffer": 0, "byteLength": 72}], "buffers": [{"byteLength": 72, "uri": "tri.bin"}]})");
+  Warnings w;
+  const Scene s = load_scene(dir / "m.gltf", w);
+  ASSERT_EQ(s.triangles.size(), 2u);
+  ASSERT_EQ(s.normals.size(), 2u);
+  // Mirrored in x: corners 1 and 2 swapped, so the triangle still faces +z.
+  const Triangle& m = s.triangles[0];
+  EXPECT_EQ(m.v0, (Vec3f{0, 0, 0}));
+  EXPECT_EQ(m.v1, (Vec3f{0, 1, 0}));
+  EXPECT_EQ(m.v2, (Vec3f{-1, 0, 0}));
+  const Vec3f face = cross(m.v1 - m.v0, m.v2 - m.v0);
+  EXPECT_GT(face.z, 0.0f);
+  // Its normals mirrored too: (-1, 1, 0)/sqrt2.
+  for (const Vec3f& n : s.normals[0].n) expect_near(n, {-r, r, 0}, 1e-6, "mirrored normal");
+  // Scaled by 2 in x: the normal's x halves before normalising: (0.5, 1, 0)/|.|.
+  const float k = float(1.0 / std::sqrt(1.25));
+  for (const Vec3f& n : s.normals[1].n) expect_near(n, {0.5f * k, k, 0}, 1e-6, "scaled normal");
+  EXPECT_EQ(s.triangles[1].v1, (Vec3f{2, 0, 5}));
+}
+
 }  // namespace
 }  // namespace kappa
