@@ -54,4 +54,17 @@ void check_json_keys_and_numbers(const std::filesystem::path& file, const std::s
   }
 }
 
+std::string line_and_column(const std::string& text, std::size_t byte) {
+  std::size_t line = 1, col = 1;
+  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+  }
+  return std::to_string(line) + ":" + std::to_string(col);
+}
+
 }  // namespace kappa

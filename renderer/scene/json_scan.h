@@ -10,6 +10,10 @@
 
 namespace kappa {
 
+/// "LINE:COLUMN" (1-based) of a byte offset in `text`: where a JSON reader
+/// (a scene file's, a glTF file's) points at an error.
+std::string line_and_column(const std::string& text, std::size_t byte);
+
 /// Throws InputError naming `file` and the line of the first duplicate key
 /// or overflowing number.
 void check_json_keys_and_numbers(const std::filesystem::path& file, const std::string& text);

@@ -21,20 +21,6 @@ using nlohmann::json;
 
 constexpr int kMaxFilmSide = 1 << 15;
 
-/// Line and column (1-based) of a byte offset.
-std::pair<std::size_t, std::size_t> line_column(const std::string& text, std::size_t byte) {
-  std::size_t line = 1, col = 1;
-  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return {line, col};
-}
-
 json parse_json(const std::filesystem::path& file, const std::string& text) {
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) fail(file, 0, "empty scene file");
   try {
@@ -48,11 +34,11 @@ json parse_json(const std::filesystem::path& file, const std::string& text) {
     fail(file, 0, "a number does not fit a double");
   } catch (const json::parse_error& e) {
     // e.byte is one past the offending character.
-    const auto [line, col] = line_column(text, e.byte > 0 ? e.byte - 1 : 0);
+    const std::string at = line_and_column(text, e.byte > 0 ? e.byte - 1 : 0);
     std::string what = e.what();
     const std::size_t colon = what.find(": ", what.find("column"));
     if (colon != std::string::npos) what = what.substr(colon + 2);
-    throw InputError(file.string() + ":" + std::to_string(line) + ":" + std::to_string(col) + ": JSON syntax error: " + what);
+    throw InputError(file.string() + ":" + at + ": JSON syntax error: " + what);
   }
 }
 

@@ -87,20 +87,6 @@ GlbChunks split_glb(const std::filesystem::path& file, const std::string& bytes,
   return chunks;
 }
 
-/// Line and column (1-based) of a byte offset.
-std::string line_column(const std::string& text, std::size_t byte) {
-  std::size_t line = 1, col = 1;
-  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(col);
-}
-
 json parse_json_text(const std::filesystem::path& file, const std::string& text) {
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) fail(file, 0, "empty glTF JSON");
   // Depth first, on the text: tinygltf's parser recurses on nesting.
@@ -117,7 +103,7 @@ json parse_json_text(const std::filesystem::path& file, const std::string& text)
     } else if (c == '[' || c == '{') {
       if (++depth > kMaxGltfJsonDepth)
         fail(file, 0, "glTF JSON nests deeper than " + std::to_string(kMaxGltfJsonDepth) + " levels at " +
-                          line_column(text, i));
+                          line_and_column(text, i));
     } else if (c == ']' || c == '}') {
       --depth;
     }
@@ -133,7 +119,7 @@ json parse_json_text(const std::filesystem::path& file, const std::string& text)
     std::string what = e.what();
     const std::size_t colon = what.find(": ", what.find("column"));
     if (colon != std::string::npos) what = what.substr(colon + 2);
-    throw InputError(file.string() + ":" + line_column(text, e.byte > 0 ? e.byte - 1 : 0) + ": JSON syntax error: " + what);
+    throw InputError(file.string() + ":" + line_and_column(text, e.byte > 0 ? e.byte - 1 : 0) + ": JSON syntax error: " + what);
   }
 }
 
