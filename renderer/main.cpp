@@ -6,6 +6,7 @@
 #include "renderer/commands/converge_command.h"
 #include "renderer/commands/render_command.h"
 #include "renderer/commands/sweep_command.h"
+#include "renderer/io/output_target.h"
 
 #include <csignal>
 
@@ -17,6 +18,10 @@ int main(int argc, char** argv) {
   // reported, its temporary removed, instead of killing the process and
   // leaving the temporary behind.
   std::signal(SIGXFSZ, SIG_IGN);
+  // A closed standard descriptor is held by /dev/null, read-only, so that no
+  // file opened later (an output being made) becomes standard output or
+  // error and receives a report or a warning.
+  kappa::hold_closed_standard_descriptors();
   kappa::Command command;
   if (const auto exit_code = kappa::parse_command_line(argc, argv, command)) return *exit_code;
   return kappa::exit_code_of([&] {

@@ -27,6 +27,7 @@
 #include "renderer/io/preview.h"
 #include "renderer/io/exr_output.h"
 #include "renderer/io/output_guard.h"
+#include "renderer/io/output_target.h"
 #include "renderer/render/accel_choice.h"
 #include "renderer/render/frame_accumulator.h"
 #include "renderer/render/integrator.h"
@@ -142,8 +143,9 @@ int run_render(const RenderOptions& options) {
     throw InputError("--grid-res model: needs --accel grid or auto (it chooses the grid's resolution)");
   if (aov.cost && (options.stats != "on" || !cell_based))
     throw InputError("--aov cost: needs --accel grid or grid2 and --stats on (it counts the cells and tests)");
-  if (!options.out.empty() && std::filesystem::path(options.out).extension() != ".exr")
-    throw InputError("--out: '" + options.out + "' must end in .exr");
+  // A device, FIFO or descriptor (`--out -`) gets OpenEXR whatever its name.
+  if (!options.out.empty() && std::filesystem::path(options.out).extension() != ".exr" && !leads_to_stream(options.out))
+    throw InputError("--out: '" + options.out + "' must end in .exr (or be a pipe, a device or -)");
 
   // --threads limits loading, the accelerator's build and the render alike.
   const ThreadLimit thread_limit(options.threads);

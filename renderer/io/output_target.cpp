@@ -45,9 +45,13 @@ bool in_system_folder(const fs::path& folder) {
   return part != folder.end() && (*part == "dev" || *part == "proc");
 }
 
+/// Standard descriptors that were closed when the process started (held by
+/// /dev/null since, see hold_closed_standard_descriptors).
+bool g_closed_at_start[3] = {false, false, false};
+
 OutputTarget open_descriptor(const fs::path& given, int descriptor) {
   const int flags = ::fcntl(descriptor, F_GETFL);
-  if (flags < 0) fail(given, 0, "cannot write: it leads to " + descriptor_name(descriptor) + ", which is closed");
+  if (flags < 0 || (descriptor >= 0 && descriptor <= 2 && g_closed_at_start[descriptor])) fail(given, 0, "cannot write: it leads to " + descriptor_name(descriptor) + ", which is closed");
 #ifdef O_PATH
   const bool path_only = (flags & O_PATH) != 0;
 #else
@@ -71,6 +75,29 @@ std::string descriptor_name(int descriptor) {
   if (descriptor == 1) return "standard output";
   if (descriptor == 2) return "standard error";
   return "descriptor " + std::to_string(descriptor);
+}
+
+void hold_closed_standard_descriptors() {
+  for (int fd = 0; fd <= 2; ++fd) {
+    if (::fcntl(fd, F_GETFD) >= 0 || errno != EBADF) continue;
+    // open() returns the lowest free number: this one, as those below are open.
+    const int held = ::open("/dev/null", O_RDONLY | O_NOCTTY);
+    if (held < 0) continue;
+    if (held != fd) {
+      ::close(held);  // not ours to hold (cannot happen: lower ones are open)
+      continue;
+    }
+    g_closed_at_start[fd] = true;
+  }
+}
+
+bool leads_to_stream(const fs::path& given) {
+  try {
+    const OutputTarget::Kind kind = resolve_output_target(given).kind;
+    return kind == OutputTarget::Kind::device || kind == OutputTarget::Kind::descriptor;
+  } catch (const InputError&) {
+    return false;
+  }
 }
 
 OutputTarget resolve_output_target(const fs::path& given) {
@@ -100,9 +127,8 @@ OutputTarget resolve_output_target(const fs::path& given) {
     if (::lstat(here.c_str(), &st) != 0) {
       const int err = errno;
       if (err != ENOENT) fail(given, 0, std::string("cannot write: ") + std::strerror(err));
-      if (through_link)
-        fail(given, 0, "cannot write: it is a symbolic link to '" + link_text +
-                           "', which does not exist (a link is written through, never replaced)");
+      // Through a link that leads nowhere yet, the file it names is made
+      // (as `>`, oiiotool and tar do), and the link stays.
       if (in_system_folder(real_folder))
         fail(given, 0, "cannot write: no file is made in " + real_folder.string() + ": give a path outside /dev and /proc");
       return {OutputTarget::Kind::new_file, here, -1};

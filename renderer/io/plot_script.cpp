@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include "core/error.h"
@@ -36,15 +37,19 @@ void run_plot_script(const std::string& script_name, const std::vector<std::stri
 JsonAndPlot::JsonAndPlot(const std::filesystem::path& json, const std::filesystem::path& plot, std::string script)
     : m_script(std::move(script)), m_json(optional_output(json)), m_plot(optional_output(plot, OutputKind::image)) {
   if (!m_plot) return;
-  if (!m_json || m_json->direct()) m_plot_json = std::make_unique<AtomicOutput>(m_plot->temp_path().string() + ".json");
+  if (!m_json || m_json->direct()) m_plot_json = std::make_unique<MemoryFile>("kappa-plot-json");
   run_plot_script(m_script, {"--check"});
 }
 
 void JsonAndPlot::finish(const std::string& text) {
   if (m_json) write_temporary(*m_json, text);
-  if (m_plot_json) write_temporary(*m_plot_json, text);
+  if (m_plot_json) {
+    std::ofstream out(m_plot_json->path(), std::ios::binary | std::ios::trunc);
+    out << text;
+    if (!out.flush()) throw std::runtime_error("--plot: cannot write its JSON in memory");
+  }
   if (m_plot)
-    run_plot_script(m_script, {(m_plot_json ? m_plot_json : m_json)->temp_path().string(), m_plot->temp_path().string()});
+    run_plot_script(m_script, {(m_plot_json ? m_plot_json->path() : m_json->temp_path()).string(), m_plot->temp_path().string()});
   const SignalsHeld held;
   if (m_json) m_json->commit();
   if (m_plot) m_plot->commit();

@@ -23,7 +23,7 @@ void run_plot_script(const std::string& script, const std::vector<std::string>& 
 /// (--plot, a PNG drawn from that JSON by a script of tools/). Claimed when
 /// made, before the work: an unwritable path or a missing matplotlib fails
 /// at once. finish() writes the JSON, draws the plot from it (from the JSON's
-/// temporary, or from one of its own when there is no --json or it names a
+/// temporary, or from a copy in memory when there is no --json or it names a
 /// device or FIFO, which the script could not read back) and commits both
 /// together. Empty paths: that output is not wanted.
 class JsonAndPlot {
@@ -33,7 +33,8 @@ class JsonAndPlot {
 
  private:
   std::string m_script;
-  std::unique_ptr<AtomicOutput> m_json, m_plot, m_plot_json;
+  std::unique_ptr<AtomicOutput> m_json, m_plot;
+  std::unique_ptr<MemoryFile> m_plot_json;  ///< the JSON the script reads when m_json cannot be read back
 };
 
 }  // namespace kappa

@@ -22,6 +22,17 @@ std::size_t entries(const std::filesystem::path& dir) {
   return n;
 }
 
+/// Whether process `pid` holds a file open in `dir` (its output being made).
+bool makes_a_file_in(pid_t pid, const std::filesystem::path& dir) {
+  std::error_code ec;
+  const std::string folder = std::filesystem::canonical(dir, ec).string() + "/";
+  for (const auto& fd : std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/fd", ec)) {
+    const auto to = std::filesystem::read_symlink(fd.path(), ec);
+    if (!ec && to.string().rfind(folder, 0) == 0) return true;
+  }
+  return false;
+}
+
 void interrupt_render(int sig) {
   test::TempDir dir;
   const auto out = dir / "image.exr";
@@ -34,15 +45,17 @@ void interrupt_render(int sig) {
   pid_t pid = 0;
   ASSERT_EQ(posix_spawn(&pid, KAPPA_BINARY, nullptr, nullptr, argv.data(), environ), 0);
 
-  // Wait until the temporary exists: the render has started.
+  // Wait until the output is being made (an unnamed file in the folder,
+  // open in the process): the render has started.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  while (entries(dir.path()) < 2 && std::chrono::steady_clock::now() < deadline)
+  while (!makes_a_file_in(pid, dir.path()) && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  ASSERT_EQ(entries(dir.path()), 2u) << "the render never created its temporary";
+  const bool started = makes_a_file_in(pid, dir.path());
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   ::kill(pid, sig);
   int status = 0;
   ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(started) << "the render never began its output";
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig);
   EXPECT_EQ(entries(dir.path()), 1u);  // only the old file
   EXPECT_EQ(test::read_file(out), "an older render");

@@ -1,7 +1,7 @@
 // Hostile input, as docs/bad-input.md's policy table classes it: an output never
-// replaces an input or another output; a device, FIFO or descriptor gets a
-// text output written to it directly, never replaced, and never an image; a
-// link is written through or refused, never replaced; reading never hangs on
+// replaces an input or another output; a device, FIFO or descriptor is
+// written to directly, never replaced (an image made whole first); a link is
+// written through or refused, never replaced; reading never hangs on
 // a FIFO or a device, nor reads an oversized file. No test here uses the
 // machine's own /dev/stdout: they make their own links to /proc/self/fd/N.
 #include <gtest/gtest.h>
@@ -13,6 +13,7 @@
 #include <fstream>
 #include <thread>
 
+#include "renderer/io/exr_input.h"
 #include "test_util.h"
 
 namespace kappa::test {
@@ -120,8 +121,7 @@ std::string render_command(const fs::path& scene, const fs::path& out) {
          quoted(out);
 }
 
-// Class: a device, FIFO or descriptor is written in place (text) or refused
-// (images), never replaced.
+// Class: a device, FIFO or descriptor is written in place, never replaced.
 TEST(HostileInput, TextOutputsGoStraightToDevicesAndFifos) {
   TempDir tmp;
   const fs::path scene = copy_cornell(tmp.path());
@@ -176,8 +176,9 @@ TEST(HostileInput, AReportIntoStdoutAppendedToALogKeepsTheLog) {
   EXPECT_NE(log.find("\"schema_version\""), std::string::npos);
 }
 
-// A link that leads nowhere (a closed descriptor behind it, dangling, a
-// loop) is refused before the render, with one line, and stays as it was.
+// A link that leads nowhere (a closed descriptor behind it, a loop) is
+// refused before the render, with one line, and stays as it was; one that
+// leads to a file not made yet is written through.
 TEST(HostileInput, AnOutputLinkThatLeadsNowhereIsRefusedBeforeRendering) {
   TempDir tmp;
   const fs::path scene = copy_cornell(tmp.path());
@@ -195,7 +196,6 @@ TEST(HostileInput, AnOutputLinkThatLeadsNowhereIsRefusedBeforeRendering) {
       {">&-", stdout_link, "fd1: cannot write: it leads to standard output, which is closed"},
       {">&-", "-", "-: cannot write: it leads to standard output, which is closed"},
       {"", fd7_link, "fd7: cannot write: it leads to descriptor 7, which is closed"},
-      {"", tmp / "dangling.json", "a symbolic link to 'nothing.json', which does not exist"},
       {"", tmp / "loop_a", "a loop of symbolic links"},
   };
   for (const Case& c : cases) {
@@ -209,13 +209,19 @@ TEST(HostileInput, AnOutputLinkThatLeadsNowhereIsRefusedBeforeRendering) {
     EXPECT_FALSE(fs::exists(tmp / "x.exr")) << "refused after rendering";
   }
   EXPECT_TRUE(fs::is_symlink(stdout_link));
-  EXPECT_EQ(fs::read_symlink(tmp / "dangling.json"), "nothing.json");
-  EXPECT_FALSE(fs::exists(tmp / "nothing.json"));
   EXPECT_TRUE(fs::is_symlink(tmp / "loop_a"));
-  // An image output through a dangling link is refused too.
-  const RunResult image = run_kappa(cheap_render(scene, tmp / "dangling.json"), tmp.path());
-  EXPECT_EQ(image.exit_code, 2) << image.std_err;
-  EXPECT_TRUE(fs::is_symlink(tmp / "dangling.json"));
+  // A link to a file not made yet is written through, as the shell's `>`
+  // and oiiotool do: the file appears where it leads, and the link stays.
+  fs::create_symlink("made.exr", tmp / "dangling.exr");
+  const RunResult report = run_kappa(cheap_render(scene, tmp / "x.exr", {"--report", (tmp / "dangling.json").string()}),
+                                     tmp.path());
+  EXPECT_EQ(report.exit_code, 0) << report.std_err;
+  const RunResult image = run_kappa(cheap_render(scene, tmp / "dangling.exr"), tmp.path());
+  EXPECT_EQ(image.exit_code, 0) << image.std_err;
+  EXPECT_EQ(fs::read_symlink(tmp / "dangling.json"), "nothing.json");
+  EXPECT_EQ(fs::read_symlink(tmp / "dangling.exr"), "made.exr");
+  EXPECT_NE(read_file(tmp / "nothing.json").find("\"schema_version\""), std::string::npos);
+  EXPECT_EQ(read_file(tmp / "made.exr").substr(0, 4), "v/1\x01");
 }
 
 // The issue's own command, on the path /dev/stdout itself: in a private mount
@@ -246,20 +252,28 @@ TEST(HostileInput, TheIssuesCommandLeavesDevStdoutALink) {
   EXPECT_FALSE(fs::exists(tmp / "y.exr"));
 }
 
-TEST(HostileInput, ImagesAreNeverWrittenToDevicesAndNothingIsReplaced) {
+TEST(HostileInput, ImagesGoToDevicesAndPipesWholeAndNothingIsReplaced) {
   TempDir tmp;
   const fs::path scene = copy_cornell(tmp.path());
   fs::create_symlink("/dev/null", tmp / "null.exr");
   const RunResult r = run_kappa(cheap_render(scene, tmp / "null.exr"), tmp.path());
-  EXPECT_EQ(r.exit_code, 2) << r.std_err;
-  EXPECT_NE(r.std_err.find("device or FIFO"), std::string::npos) << r.std_err;
+  EXPECT_EQ(r.exit_code, 0) << r.std_err;
   EXPECT_TRUE(fs::is_symlink(tmp / "null.exr"));
   EXPECT_TRUE(fs::is_character_file("/dev/null"));
-  // A full device: the report's write fails, exit 1 (not the input's fault),
-  // and the device is still a device.
-  const RunResult full = run_kappa(cheap_render(scene, tmp / "x.exr", {"--report", "/dev/full"}), tmp.path());
-  EXPECT_EQ(full.exit_code, 1) << full.std_err;
-  EXPECT_NE(full.std_err.find("kappa: internal error: /dev/full: cannot write"), std::string::npos) << full.std_err;
+  // `--out -`: the EXR on standard output, the same bytes as in a file.
+  ASSERT_EQ(run_bash(tmp, render_command(scene, tmp / "file.exr")), 0);
+  ASSERT_EQ(run_bash(tmp, render_command(scene, "-") + " > " + quoted(tmp / "piped.exr")), 0);
+  const ReferenceImage piped = read_reference(tmp / "piped.exr"), file = read_reference(tmp / "file.exr");
+  EXPECT_EQ(piped.width, 64);
+  EXPECT_EQ(piped.rgb, file.rgb);
+  EXPECT_FALSE(fs::exists(tmp / "-"));
+  // A full device: the write fails, exit 1 (not the input's fault), one
+  // line, and the device is still a device.
+  for (const auto& args : {cheap_render(scene, tmp / "x.exr", {"--report", "/dev/full"}), cheap_render(scene, "/dev/full")}) {
+    const RunResult full = run_kappa(args, tmp.path());
+    EXPECT_EQ(full.exit_code, 1) << full.std_err;
+    EXPECT_EQ(full.std_err, "kappa: error: /dev/full: cannot write: No space left on device\n");
+  }
   EXPECT_TRUE(fs::is_character_file("/dev/full"));
 }
 
