@@ -37,12 +37,18 @@ bool is_own_descriptor_folder(const fs::path& folder) {
          all_digits(parts[4]) && parts[5] == "fd";
 }
 
-/// Whether `folder` (canonical) is /dev or /proc or inside them.
+/// Whether `folder` (canonical) is /dev or /proc or inside them, but for
+/// /dev/shm: a memory file system where files are made and replaced as
+/// anywhere else.
 bool in_system_folder(const fs::path& folder) {
   auto part = folder.begin();
   if (part == folder.end() || *part != "/") return false;
   ++part;
-  return part != folder.end() && (*part == "dev" || *part == "proc");
+  if (part == folder.end()) return false;
+  if (*part == "proc") return true;
+  if (*part != "dev") return false;
+  ++part;
+  return part == folder.end() || *part != "shm";
 }
 
 /// Standard descriptors that were closed when the process started (held by

@@ -180,6 +180,10 @@ TEST(OutputTarget, NoFileIsMadeOrReplacedInDevOrProc) {
   // /proc/self/status is a regular file in /proc.
   EXPECT_NE(refusal("/proc/self/status").find("which is never replaced"), std::string::npos);
   EXPECT_FALSE(fs::exists("/dev/kappa-output-target-test.json"));
+  // /dev/shm is a memory file system like any other folder.
+  if (fs::is_directory("/dev/shm")) {
+    EXPECT_EQ(refusal("/dev/shm/kappa-output-target-test.json"), "");
+  }
 }
 
 TEST(OutputTarget, AReportThroughALinkIsWrittenThroughAndTheLinkStays) {
