@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstring>
 
+
 namespace kappa {
 
 std::string located(const std::filesystem::path& file, std::size_t line, const std::string& message) {
@@ -39,10 +40,6 @@ std::size_t utf8_sequence_length(const std::string& s, std::size_t i) {
 }
 
 }  // namespace
-
-void print_warnings(const Warnings& warnings) {
-  for (const auto& w : warnings) std::fprintf(stderr, "kappa: warning: %s\n", printable_line(w).c_str());
-}
 
 std::string printable_line(const std::string& message) {
   std::string out;

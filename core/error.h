@@ -36,10 +36,8 @@ class OutputError : public std::runtime_error {
 /// become \xNN and line breaks become spaces.
 std::string printable_line(const std::string& message);
 
-/// Warnings gathered while loading, printed by the caller (and inspected by tests).
+/// Warnings gathered while loading, printed by the caller through the
+/// process's WarningLog (core/warning_log.h), and inspected by tests.
 using Warnings = std::vector<std::string>;
-
-/// Prints each warning as one "kappa: warning: ..." line on stderr.
-void print_warnings(const Warnings& warnings);
 
 }  // namespace kappa

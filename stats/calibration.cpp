@@ -97,7 +97,7 @@ bool calibration_of_another_format(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return false;
   try {
-    const nlohmann::json j = nlohmann::json::parse(read_input_file(file, "a calibration file"));
+    const nlohmann::json j = nlohmann::json::parse(read_input_file(file, "a calibration file", InputContent::utf8));
     if (!j.is_object()) return false;
     const auto format = j.find("format");
     // The first format had no "format" key, only eq 10's three constants.
@@ -111,7 +111,7 @@ bool calibration_of_another_format(const std::filesystem::path& file) {
 std::optional<Calibration> load_calibration(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) return std::nullopt;
-  const std::string text = read_input_file(file, "a calibration file");  // never blocks on a FIFO
+  const std::string text = read_input_file(file, "a calibration file", InputContent::utf8);  // never blocks on a FIFO
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);

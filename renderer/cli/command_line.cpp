@@ -8,6 +8,8 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/memory_need.h"
+#include "core/warning_log.h"
 #include "renderer/cli/accel_flags.h"
 #include "renderer/version.h"
 
@@ -299,18 +301,26 @@ RenderOptions vary_render_option(const RenderOptions& base, const std::string& k
 }
 
 int exit_code_of(const std::function<int()>& run) {
+  // The warnings counted but not shown are summed up before the last line.
   try {
-    return run();
+    const int code = run();
+    warning_log().finish();
+    return code;
   } catch (const InputError& e) {
+    warning_log().finish();
     std::fprintf(stderr, "kappa: error: %s\n", printable_line(e.what()).c_str());
     return 2;
   } catch (const OutputError& e) {
+    warning_log().finish();
     std::fprintf(stderr, "kappa: error: %s\n", printable_line(e.what()).c_str());
     return 1;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "kappa: error: out of memory\n");
-    return 1;
+    // Too big an input for this machine (or its limits): the input's
+    // doing, exit 2, naming what needed the memory.
+    std::fprintf(stderr, "kappa: error: %s\n", out_of_memory_message().c_str());
+    return 2;
   } catch (const std::exception& e) {
+    warning_log().finish();
     std::fprintf(stderr, "kappa: internal error: %s\n", printable_line(e.what()).c_str());
     return 1;
   }

@@ -14,6 +14,7 @@
 #include "accel/factory.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/warning_log.h"
 #include "renderer/cli/progress.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/output_guard.h"

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/thread_limit.h"
+#include "core/warning_log.h"
 #include "renderer/cli/progress.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/output_guard.h"
@@ -57,7 +58,7 @@ int run_cast(const CastOptions& options) {
   Vec3d lo(scene.bounds().lo), hi(scene.bounds().hi);
   if (cells) lo = cells->bounds().lo, hi = cells->bounds().hi;
   if (options.length > 0 && options.rays != "segments")
-    std::fprintf(stderr, "kappa: warning: --length applies to --rays segments only; ignored\n");
+    warning_log().add("--length applies to --rays segments only; ignored");
   if (options.rays == "lines") {
     rays = uniform_lines(lo, hi, options.n, options.seed);
   } else if (options.rays == "segments") {
@@ -75,8 +76,8 @@ int run_cast(const CastOptions& options) {
   }
 
   if (rays.size() < options.n)
-    std::fprintf(stderr, "kappa: warning: %zu of the %zu rays asked for could be made (the report counts those)\n",
-                 rays.size(), options.n);
+    warning_log().add(std::to_string(rays.size()) + " of the " + std::to_string(options.n) +
+                      " rays asked for could be made (the report counts those)");
 
   nlohmann::ordered_json report = report_header(scene, *accel);
   report["render"] = nullptr;  // a cast renders nothing
@@ -89,7 +90,7 @@ int run_cast(const CastOptions& options) {
     if constexpr (CellWalker<A>) {
       const CastMeasurement m = cast_with_counters(a, rays, walk, options.build.max_bytes());
       add_stats_block(report, m.counters.per_cell(), m.cell_sample, m.stats_note);
-      if (!m.stats_note.empty()) std::fprintf(stderr, "kappa: warning: %s\n", m.stats_note.c_str());
+      if (!m.stats_note.empty()) warning_log().add(m.stats_note);
       if (options.rays == "lines" && cell_size)
         p_tot_predicted = p_tot_lines_eq22(hi - lo, *cell_size, double(cells->cell_count()));
       report[std::string(a.name())] = accel_section(a, scene.triangles);
@@ -116,6 +117,7 @@ int run_cast(const CastOptions& options) {
     std::fputs(stats_table(report).c_str(), stdout);
   }
   if (report_out) {
+    report["warnings"] = warnings_section(warning_log().kinds());
     write_and_commit(*report_out, report.dump(2) + "\n");
   }
   return 0;

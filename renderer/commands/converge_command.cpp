@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/thread_limit.h"
+#include "core/warning_log.h"
 #include "renderer/cli/accel_flags.h"
 #include "renderer/cli/command_line.h"
 #include "renderer/cli/progress.h"

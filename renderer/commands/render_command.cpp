@@ -17,7 +17,9 @@
 #include "accel/factory.h"
 #include "core/byte_size.h"
 #include "core/error.h"
+#include "core/memory_need.h"
 #include "core/thread_limit.h"
+#include "core/warning_log.h"
 #include "renderer/cli/duration.h"
 #include "renderer/cli/interrupt.h"
 #include "renderer/cli/progress.h"
@@ -34,6 +36,7 @@
 #include "renderer/render/sampler_kind.h"
 #include "renderer/report/render_record.h"
 #include "renderer/report/render_report.h"
+#include "renderer/report/report_sections.h"
 #include "renderer/report/stats_table.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/version.h"
@@ -79,6 +82,12 @@ Budget budget_of(const RenderOptions& options) {
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), e);
     if (ec != std::errc() || end != text.data() + text.size() || !(e > 0) || !std::isfinite(e))
       throw InputError("--target-relmse: '" + text + "' is not a number above 0");
+    // The estimate falls as c / spp, c = a pixel's variance over (mean^2 +
+    // 0.01): even a smooth scene's c of 1e-3 needs 1e9 spp, Kappa's limit of
+    // 2^30, to reach 1e-12. A target below would render without end.
+    if (e < kMinTargetRelmse)
+      throw InputError("--target-relmse: '" + text + "' is below 1e-12, which no render reaches within Kappa's limit of " +
+                       std::to_string(kMaxSpp) + " samples per pixel");
     budget.target_relmse = e;
   }
   if (options.adaptive && budget.target_relmse == 0)
@@ -180,8 +189,8 @@ int run_render(const RenderOptions& options) {
   // refused.
   std::optional<Calibration> calibration;
   if (options.calibration.empty() && calibration_of_another_format(calibration_path))
-    std::fprintf(stderr, "kappa: warning: %s: a calibration of another format, from another Kappa, is not used: "
-                 "run kappa calibrate again\n", calibration_path.c_str());
+    warning_log().add(calibration_path.string() +
+                      ": a calibration of another format, from another Kappa, is not used: run kappa calibrate again");
   else
     calibration = load_calibration(calibration_path);
   if (!calibration && !options.calibration.empty())
@@ -200,6 +209,7 @@ int run_render(const RenderOptions& options) {
   // 64 when a budget decides how many).
   request.frame_paths = double(scene.width) * double(scene.height) * double(options.spp);
   FrameAccelerator frame_accel = with_progress(show_progress, [&](TaskProgress* progress) {
+    const MemoryNeed need("building the accelerator over " + std::to_string(scene.triangles.size()) + " triangles", 0);
     return build_frame_accelerator(scene, settings, request, *calibration, progress);
   });
   std::unique_ptr<Accelerator> accel = std::move(frame_accel.accel);
@@ -208,6 +218,8 @@ int run_render(const RenderOptions& options) {
 
   const int threads = active_threads();
 
+  const MemoryNeed frame_need("rendering the " + std::to_string(scene.width) + "x" + std::to_string(scene.height) +
+                                  " frame", 0);
   Film film(scene.width, scene.height, aov);
   ProgressBar bar(show_progress);
   begin_phase(bar.task(), "rendering", 0);
@@ -258,8 +270,9 @@ int run_render(const RenderOptions& options) {
     return kInterruptedExitCode;  // the outputs' temporaries are removed as they go out of scope
   }
   if (result.nonfinite_samples > 0)
-    std::fprintf(stderr, "kappa: warning: %llu samples had non-finite radiance and were dropped from their pixels\n",
-                 static_cast<unsigned long long>(result.nonfinite_samples));
+    warning_log().add(std::to_string(result.nonfinite_samples) +
+                      " samples had non-finite radiance and were dropped from their pixels");
+  if (!result.stats_note.empty()) warning_log().add(result.stats_note);
 
   // Every setting that changes the image, from one record, in both the EXR
   // header and the report; then what the run measured.
@@ -291,12 +304,13 @@ int run_render(const RenderOptions& options) {
     if (result.counters->classes[0].per_cell()) {
       write_cell_map(*cell_map_out, *accel->cells(), *result.counters, options.cell_map_axis[0] - 'x');
     } else {
-      std::fprintf(stderr, "kappa: warning: --cell-map skipped: per-cell statistics were refused for this frame\n");
+      warning_log().add("--cell-map skipped: per-cell statistics were refused for this frame");
     }
   }
   {
     // The image and the report land together: a signal during the renames
     // waits until both are done (and then ends the process as it would have).
+    report["warnings"] = warnings_section(warning_log().kinds());
     const std::string report_text = report.dump(2) + "\n";
     if (report_out) write_temporary(*report_out, report_text);
     if (preview_out) write_preview(*preview_out, film, float(options.preview_exposure));
@@ -305,7 +319,6 @@ int run_render(const RenderOptions& options) {
     if (preview_out) preview_out->commit();
     if (report_out) report_out->commit();
   }
-  if (!result.stats_note.empty()) std::fprintf(stderr, "kappa: warning: %s\n", result.stats_note.c_str());
 
   if (!options.quiet) {
     if (const CellLayout* cells = accel->cells()) {

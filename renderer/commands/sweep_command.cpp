@@ -15,6 +15,7 @@
 #include "accel/triangle.h"
 #include "core/error.h"
 #include "core/thread_limit.h"
+#include "core/warning_log.h"
 #include "renderer/cli/progress.h"
 #include "renderer/cli/sweep_range.h"
 #include "renderer/io/atomic_file.h"

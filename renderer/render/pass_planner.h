@@ -38,6 +38,8 @@ inline constexpr double kPassShareOfBudget = 0.05;
 inline constexpr int kFirstRelmseCheckSpp = 8;
 /// No pixel takes more samples than this (its counts are 32-bit).
 inline constexpr int kMaxSpp = 1 << 30;
+/// The smallest --target-relmse taken (render_command.cpp says why).
+inline constexpr double kMinTargetRelmse = 1e-12;
 
 class PassPlanner {
  public:

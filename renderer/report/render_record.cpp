@@ -14,8 +14,16 @@ std::string hex16(std::uint64_t h) {
 }
 
 std::string input_hash(const Scene& scene) {
+  // Each input's hash was taken from its bytes as they were read (no file
+  // is opened again); chained here in the scene's order.
   std::uint64_t h = kFnv1aOffset;
-  for (const auto& file : scene.inputs) h = fnv1a64(read_input_file(file, "an input file"), h);
+  for (const auto& file : scene.inputs) {
+    const std::optional<InputRecord> record = input_read(file);
+    const std::uint64_t part = record ? record->hash : fnv1a64(file.string());
+    char bytes[8];
+    for (int i = 0; i < 8; ++i) bytes[i] = char(part >> (8 * i));
+    h = fnv1a64(std::string_view(bytes, 8), h);
+  }
   return hex16(h);
 }
 

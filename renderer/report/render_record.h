@@ -31,7 +31,8 @@ using RenderRecord = std::vector<std::pair<std::string, SettingValue>>;
 RenderRecord render_record(const RenderOptions& options, const Scene& scene, const std::string& grid_res, int spp,
                            const Budget& budget = {});
 
-/// FNV-1a 64 over every input file's bytes, in order, as 16 hex digits.
+/// FNV-1a 64 over the hashes of every input file's bytes as they were read
+/// (input_read(), core/input_file.h), in the scene's order, as 16 hex digits.
 std::string input_hash(const Scene& scene);
 /// 16 lower-case hex digits of h.
 std::string hex16(std::uint64_t h);

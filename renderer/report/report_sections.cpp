@@ -1,10 +1,21 @@
 #include "renderer/report/report_sections.h"
 
+#include "core/error.h"
+#include "core/input_file.h"
 #include "renderer/image/image_library.h"
+#include "renderer/report/render_record.h"
 #include "renderer/version.h"
 #include "stats/report.h"
 
 namespace kappa {
+
+nlohmann::ordered_json warnings_section(const std::vector<WarningKind>& kinds) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  // As printed: file content in a warning (a Latin-1 name) is not UTF-8.
+  for (const WarningKind& k : kinds)
+    list.push_back({{"kind", printable_line(k.kind)}, {"count", k.count}, {"first", printable_line(k.first)}});
+  return list;
+}
 
 nlohmann::ordered_json images_section(const Scene& scene) {
   nlohmann::ordered_json j;
@@ -41,6 +52,14 @@ nlohmann::ordered_json report_header(const Scene& scene, const Accelerator& acce
   j["kappa_version"] = version_string();
   j["scene"] = scene.source.string();
   j["load_s"] = scene.load_s;
+  // Provenance: each file read, its size and the hash of the bytes parsed.
+  j["inputs"] = nlohmann::ordered_json::array();
+  for (const auto& file : scene.inputs) {
+    const std::optional<InputRecord> record = input_read(file);
+    j["inputs"].push_back({{"file", printable_line(file.string())},
+                           {"bytes", record ? nlohmann::ordered_json(record->bytes) : nlohmann::ordered_json(nullptr)},
+                           {"hash", record ? hex16(record->hash) : std::string()}});
+  }
   j["images"] = images_section(scene);
   j["gltf"] = nlohmann::ordered_json::array();
   for (const GltfSummary& g : scene.gltf_files)

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "accel/accel.h"
+#include "core/warning_log.h"
 #include "renderer/scene/scene.h"
 
 namespace kappa {
@@ -18,6 +19,10 @@ namespace kappa {
 /// the texture cache's statistics (OpenImageIO's own) and whether the
 /// OpenImageIO module was loaded at all.
 nlohmann::ordered_json images_section(const Scene& scene);
+
+/// The run's warnings by kind: [{kind, count, first}], in the order first
+/// seen (core/warning_log.h); the terminal showed only the first few of each.
+nlohmann::ordered_json warnings_section(const std::vector<WarningKind>& kinds);
 
 /// schema_version, kappa_version, scene and accel: the keys every report starts with.
 nlohmann::ordered_json report_header(const Scene& scene, const Accelerator& accel);

@@ -4,7 +4,9 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "core/error.h"
 #include "core/input_error.h"
 #include "core/srgb.h"
 #include "renderer/image/image_library.h"
@@ -13,6 +15,20 @@ namespace kappa {
 namespace {
 
 std::string size_text(const ImageFacts& f) { return std::to_string(f.width) + "x" + std::to_string(f.height); }
+
+/// Reads the image file `file` once (hashed for the report's provenance) and
+/// hands its bytes to the library, which decodes it from memory from then on:
+/// no image is opened again after loading.
+void read_image_file(ImageLibrary& lib, const std::filesystem::path& file, const std::filesystem::path& where,
+                     std::size_t line, const std::string& what) {
+  std::string bytes;
+  try {
+    bytes = read_input_file(file, "an image file");
+  } catch (const InputError& e) {
+    fail(where, line, what + ": " + e.what());
+  }
+  lib.add_memory_file(file.string(), std::vector<unsigned char>(bytes.begin(), bytes.end()));
+}
 
 /// The header of `file`, refused (at `where`:`line`) when OpenImageIO cannot
 /// read it or it is empty or over the size limit.
@@ -77,6 +93,7 @@ void load_texture_maps(Scene& scene, ImageLibrary& lib, Warnings& warnings) {
     auto it = opened.find(map.file);
     if (it == opened.end()) {
       if (map.embedded) lib.add_memory_file(map.file.string(), *map.embedded);
+      else read_image_file(lib, map.file, map.declared_in, map.line, what);
       const ImageFacts f = checked_facts(lib, map.file, map.declared_in, map.line, what);
       check_texels(lib, map.file, map.declared_in, map.line, what,
                    "NaN and negative values read as 0, values above 1 as 1", warnings);
@@ -145,6 +162,7 @@ void load_texture_maps(Scene& scene, ImageLibrary& lib, Warnings& warnings) {
 void load_environment(Scene& scene, ImageLibrary& lib, Warnings& warnings) {
   const std::filesystem::path& file = scene.environment_file;
   const std::string what = "environment image";
+  read_image_file(lib, file, scene.source, 0, what);
   const ImageFacts f = checked_facts(lib, file, scene.source, 0, what);
   if (f.width != 2 * f.height)
     warnings.push_back(located(scene.source, 0, what + " '" + file.string() + "' is " + size_text(f) +

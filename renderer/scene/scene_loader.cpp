@@ -116,8 +116,16 @@ void film_of_aspect(Scene& scene, float aspect) {
   }
 }
 
+/// Refuses a file name no file can have: one holding a NUL (JSON's \u0000),
+/// which the system would cut there and open another file.
+void refuse_unnameable(const std::filesystem::path& file, const std::string& what, const std::string& name) {
+  if (name.find('\0') != std::string::npos)
+    fail(file, 0, what + " name '" + printable_line(name.substr(0, name.find('\0'))) +
+                      "\\u0000...' holds a NUL character, which no file name can");
+}
+
 Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings, TaskProgress* progress) {
-  const std::string text = read_input_file(file, "a scene file");
+  const std::string text = read_input_file(file, "a scene file", InputContent::utf8);
   const json root = parse_json(file, text);
   const FieldReader field(file);
   if (!root.is_object()) fail(file, 0, "the scene must be a JSON object");
@@ -134,6 +142,7 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings, Tas
   std::vector<std::filesystem::path> mesh_paths;
   for (const json& m : meshes) {
     if (!m.is_string() || m.get<std::string>().empty()) field.bad("meshes", "a non-empty array of OBJ or glTF file names");
+    refuse_unnameable(file, "mesh", m.get<std::string>());
     mesh_paths.push_back(file.parent_path() / m.get<std::string>());
   }
 
@@ -158,6 +167,7 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings, Tas
       // A latitude-longitude image (renderer/render/environment_map.h), read
       // by load_scene_images; the constant is its mean until then.
       if (env.get<std::string>().empty()) field.bad("environment", "[r, g, b] or an image file name");
+      refuse_unnameable(file, "environment image", env.get<std::string>());
       scene.environment_file = file.parent_path() / env.get<std::string>();
       std::error_code ec;
       if (!std::filesystem::is_regular_file(scene.environment_file, ec))
@@ -197,7 +207,15 @@ Scene load_json_scene(const std::filesystem::path& file, Warnings& warnings, Tas
     std::error_code ec;
     // What else the path may be (a FIFO, a device) is refused by the OBJ
     // reader's input check, naming the mesh.
-    if (!std::filesystem::exists(mesh, ec)) fail(file, 0, "mesh '" + mesh.string() + "' not found");
+    // What the path is (missing, a loop of links, behind a folder that
+    // cannot be searched, a FIFO) is said naming the scene file and the mesh.
+    try {
+      check_input_file(mesh, "a mesh file");
+    } catch (const InputError& e) {
+      std::string why = e.what();
+      if (why.rfind(mesh.string() + ": ", 0) == 0) why.erase(0, mesh.string().size() + 2);
+      fail(file, 0, "mesh '" + mesh.string() + (why == "file not found" ? "' not found" : "': " + why));
+    }
     load_mesh_file(mesh, scene, warnings, progress);
   }
   if (has_camera) {

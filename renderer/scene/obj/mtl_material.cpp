@@ -133,7 +133,7 @@ float mean(const Vec3f& c) { return (c.x + c.y + c.z) / 3.0f; }
 
 std::vector<MtlRecord> read_mtl_records(const std::filesystem::path& file, const std::string& text, Warnings& warnings) {
   std::vector<MtlRecord> records;
-  std::set<std::string> names;
+  std::map<std::string, std::size_t> names;  ///< each name's first definition line
   bool skipping = false;  // inside a second definition of a name
   bool warned_orphan = false;
   std::istringstream lines(text);
@@ -148,9 +148,12 @@ std::vector<MtlRecord> read_mtl_records(const std::filesystem::path& file, const
     if (s.keyword == "newmtl") {
       // The name is the rest of the line (names with spaces exist in the wild).
       const std::string name = trimmed(std::string_view(body).substr(6));
-      skipping = !names.insert(name).second;
+      const auto [first, inserted] = names.emplace(name, line_no);
+      skipping = !inserted;
       if (skipping) {
-        warnings.push_back(located(file, line_no, "material '" + name + "' is defined again; its first definition is used"));
+        // As Blender 3.4's importer: the first definition holds.
+        warnings.push_back(located(file, line_no, "material '" + name + "' is defined again; its first definition, at line " +
+                                                      std::to_string(first->second) + ", is used"));
         continue;
       }
       records.push_back(MtlRecord{name, line_no, {}});

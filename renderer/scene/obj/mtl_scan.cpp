@@ -14,12 +14,17 @@ namespace kappa {
 std::string scan_mtl(const std::filesystem::path& file, const std::string& text) {
   std::string out;
   out.reserve(text.size() + 64);
-  std::istringstream lines(text);
-  std::string line;
-  for (std::size_t line_no = 1; std::getline(lines, line); ++line_no) {
-    std::string_view body(line);
+  // A UTF-8 byte-order mark is not part of the first statement.
+  std::istringstream lines(text.rfind("\xEF\xBB\xBF", 0) == 0 ? text.substr(3) : text);
+  std::string raw;
+  for (std::size_t line_no = 1; std::getline(lines, raw); ++line_no) {
+    std::string_view body(raw);
     if (!body.empty() && body.back() == '\r') body.remove_suffix(1);
-    const auto tokens = split_ws(body);
+    // As the OBJ scan reads its lines: comments dropped, every blank a space.
+    body = without_comment(body);
+    std::string line;
+    append_with_spaces(line, body);
+    const auto tokens = split_ws(line);
     const bool colour = !tokens.empty() && (tokens[0] == "Ka" || tokens[0] == "Kd" || tokens[0] == "Ks" ||
                                             tokens[0] == "Ke" || tokens[0] == "Tf" || tokens[0] == "Kt");
     if (!colour) {

@@ -9,9 +9,11 @@
 
 namespace kappa {
 
-/// The text to hand tinyobjloader: every colour statement (Ka, Kd, Ks, Ke,
-/// Tf) holds 1 or 3 finite numbers within the coordinate limit, and a
-/// one-component colour is written out as the grey it means (g = b = r).
+/// The text to hand tinyobjloader (and Kappa's own MTL reader): without a
+/// byte-order mark and comments, every blank a space (obj_scan.h), every
+/// colour statement (Ka, Kd, Ks, Ke, Tf) holding 1 or 3 finite numbers
+/// within the coordinate limit, and a one-component colour written out as
+/// the grey it means (g = b = r).
 /// Throws InputError naming `file` and the line for anything else.
 std::string scan_mtl(const std::filesystem::path& file, const std::string& text);
 

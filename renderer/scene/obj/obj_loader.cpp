@@ -91,21 +91,31 @@ class CountingTextBuffer : public std::streambuf {
 };
 
 /// Hands tinyobjloader the text of the material libraries already read and
-/// checked, by the name the OBJ's `mtllib` gives.
+/// checked: all of them, in the order the OBJ names them, the first time it
+/// asks for one. tinyobjloader reads only the first library of a `mtllib`
+/// line; Blender's importer, whose reading Kappa follows, reads every one.
 class CheckedMaterialReader : public tinyobj::MaterialReader {
  public:
-  explicit CheckedMaterialReader(const std::map<std::string, std::string>& libraries) : m_libraries(libraries) {}
-  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
-                  std::map<std::string, int>* ids, std::string* warn, std::string* err) override {
-    const auto it = m_libraries.find(name);
-    if (it == m_libraries.end()) return false;  // missing: warned about above
-    std::istringstream text(it->second);
-    tinyobj::LoadMtl(ids, materials, &text, warn, err);
-    return true;
+  CheckedMaterialReader(const std::vector<std::string>& order, const std::map<std::string, std::string>& libraries)
+      : m_order(order), m_libraries(libraries) {}
+  bool operator()(const std::string&, std::vector<tinyobj::material_t>* materials, std::map<std::string, int>* ids,
+                  std::string* warn, std::string* err) override {
+    if (m_served) return true;
+    for (const std::string& name : m_order) {
+      const auto it = m_libraries.find(name);
+      if (it == m_libraries.end() || !m_read.insert(name).second) continue;  // missing (warned about) or read
+      std::istringstream text(it->second);
+      tinyobj::LoadMtl(ids, materials, &text, warn, err);
+      m_served = true;
+    }
+    return m_served;
   }
 
  private:
+  const std::vector<std::string>& m_order;
   const std::map<std::string, std::string>& m_libraries;
+  std::set<std::string> m_read;
+  bool m_served = false;
 };
 
 }  // namespace
@@ -122,16 +132,22 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
   // definition in the libraries' order (what tinyobjloader also keeps).
   std::map<std::string, std::pair<MtlRecord, std::filesystem::path>> records;
   for (const auto& lib : scan.mtllibs) {
+    if (libraries.count(lib)) continue;  // named again: read once
     std::error_code ec;
     if (!std::filesystem::exists(dir / lib, ec)) {
       warnings.push_back(located(obj, 0, "material library '" + lib + "' not found; its materials use the default grey"));
       continue;
     }
-    libraries[lib] = scan_mtl(dir / lib, read_input_file(dir / lib, "a material library (MTL)"));
+    libraries[lib] = scan_mtl(dir / lib, read_input_file(dir / lib, "a material library (MTL)", InputContent::text));
     scene.inputs.push_back(dir / lib);
     for (MtlRecord& r : read_mtl_records(dir / lib, libraries[lib], warnings)) {
       const std::string name = r.name;
-      records.emplace(name, std::pair{std::move(r), dir / lib});
+      const std::size_t line = r.line;
+      const auto [first, inserted] = records.emplace(name, std::pair{std::move(r), dir / lib});
+      if (!inserted)
+        warnings.push_back(located(dir / lib, line, "material '" + name + "' is defined again; its first definition, at " +
+                                                        first->second.second.string() + ":" +
+                                                        std::to_string(first->second.first.line) + ", is used"));
     }
   }
   for (const ObjPolygon& poly : scan.polygons) {
@@ -156,7 +172,7 @@ void load_obj(const std::filesystem::path& obj, Scene& scene, Warnings& warnings
   begin_phase(progress, "parsing " + obj.filename().string(), scan.text.size());
   CountingTextBuffer text_buffer(scan.text, progress);
   std::istream text(&text_buffer);
-  CheckedMaterialReader mtl_reader(libraries);
+  CheckedMaterialReader mtl_reader(scan.mtllibs, libraries);
   // Problems tinyobjloader warns about were already reported by the scan, in
   // Kappa's words and with line numbers, so its own warning text is not repeated.
   if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &tiny_warn, &tiny_err, &text, &mtl_reader, true, false)) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "renderer/scene/obj/obj_limits.h"
@@ -71,10 +72,9 @@ class Scanner {
       if (end == std::string::npos) end = bytes.size();
       std::string_view line(bytes.data() + start, end - start);
       if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+      line = without_comment(line);
       ++line_no;
-      if (scan_line(line, line_no)) {
-        m_scan.text.append(line);
-      }
+      if (scan_line(line, line_no)) append_with_spaces(m_scan.text, line);
       m_scan.text.push_back('\n');  // keep line numbers aligned, add a final newline
       start = end + 1;
     }
@@ -112,11 +112,10 @@ class Scanner {
     std::size_t start = 0;
     while (start < bytes.size()) {
       std::size_t i = start;
-      while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t')) ++i;
       if (start == 0 && bytes.rfind("\xEF\xBB\xBF", 0) == 0) i += 3;
+      while (i < bytes.size() && is_blank(bytes[i])) ++i;
       const std::size_t after = i + key.size();
-      if (after < bytes.size() && bytes.compare(i, key.size(), key) == 0 && (bytes[after] == ' ' || bytes[after] == '\t'))
-        ++n;
+      if (after < bytes.size() && bytes.compare(i, key.size(), key) == 0 && is_blank(bytes[after])) ++n;
       const std::size_t end = bytes.find('\n', start);
       if (end == std::string::npos) break;
       start = end + 1;
@@ -141,8 +140,8 @@ class Scanner {
     if (key == "usemtl") {
       // The name is the whole rest of the line: material names may hold spaces.
       std::string_view rest = line.substr(line.find("usemtl") + 6);
-      while (!rest.empty() && (rest.front() == ' ' || rest.front() == '\t')) rest.remove_prefix(1);
-      while (!rest.empty() && (rest.back() == ' ' || rest.back() == '\t')) rest.remove_suffix(1);
+      while (!rest.empty() && is_blank(rest.front())) rest.remove_prefix(1);
+      while (!rest.empty() && is_blank(rest.back())) rest.remove_suffix(1);
       m_scan.material_uses.push_back({line_no, std::string(rest)});
       return true;
     }
@@ -201,7 +200,7 @@ class Scanner {
   void check_attribute_index(long long index, const char* what, long long defined, long long total,
                              std::size_t line_no) {
     if (index == 0) fail(m_file, line_no, std::string("face ") + what + " index 0 is invalid (OBJ indices start at 1)");
-    if (index < 0 && -index > defined)
+    if (index < 0 && (index == std::numeric_limits<long long>::min() || -index > defined))
       fail(m_file, line_no,
            std::string("relative face ") + what + " index " + std::to_string(index) + " points before the first " +
                what + " (" + std::to_string(defined) + " defined so far)");
@@ -212,6 +211,10 @@ class Scanner {
   }
 
   bool scan_face(const std::vector<std::string_view>& tok, std::size_t line_no) {
+    if (tok.size() - 1 > kMaxFaceVertices)
+      fail(m_file, line_no,
+           "a face of " + std::to_string(tok.size() - 1) + " vertices: more than Kappa's limit of " +
+               std::to_string(kMaxFaceVertices) + " (triangulating it takes time growing as the square); split it");
     ObjPolygon poly;
     poly.line = line_no;
     for (std::size_t i = 1; i < tok.size(); ++i) {
@@ -241,7 +244,7 @@ class Scanner {
       const auto defined = static_cast<long long>(m_scan.positions.size());
       if (index == 0) fail(m_file, line_no, "face index 0 is invalid (OBJ indices start at 1)");
       if (index < 0) {
-        if (-index > defined)
+        if (index == std::numeric_limits<long long>::min() || -index > defined)
           fail(m_file, line_no,
                "relative face index " + std::to_string(index) + " points before the first vertex (" +
                    std::to_string(defined) + " defined so far)");
@@ -297,17 +300,31 @@ std::vector<std::string_view> split_ws(std::string_view s) {
   std::vector<std::string_view> out;
   std::size_t i = 0;
   while (i < s.size()) {
-    while (i < s.size() && (s[i] == ' ' || s[i] == '\t' || s[i] == '\v' || s[i] == '\f')) ++i;
+    while (i < s.size() && is_blank(s[i])) ++i;
     const std::size_t b = i;
-    while (i < s.size() && !(s[i] == ' ' || s[i] == '\t' || s[i] == '\v' || s[i] == '\f')) ++i;
+    while (i < s.size() && !is_blank(s[i])) ++i;
     if (i > b) out.push_back(s.substr(b, i - b));
   }
   return out;
 }
 
+std::string_view without_comment(std::string_view line) {
+  for (std::size_t i = 0; i < line.size(); ++i)
+    if (line[i] == '#' && (i == 0 || is_blank(line[i - 1]))) {
+      line = line.substr(0, i);
+      break;
+    }
+  while (!line.empty() && is_blank(line.back())) line.remove_suffix(1);
+  return line;
+}
+
+void append_with_spaces(std::string& out, std::string_view line) {
+  for (char c : line) out.push_back(is_blank(c) ? ' ' : c);
+}
+
 ObjScan scan_obj(const std::filesystem::path& file, Warnings& warnings, TaskProgress* progress) {
   begin_phase(progress, "reading " + file.filename().string(), 0);
-  const std::string bytes = read_input_file(file, "an OBJ file");
+  const std::string bytes = read_input_file(file, "an OBJ file", InputContent::text);
   begin_phase(progress, "checking " + file.filename().string(), bytes.size());
   return Scanner(file, warnings, progress).run(bytes);
 }

@@ -40,7 +40,20 @@ ObjScan scan_obj(const std::filesystem::path& file, Warnings& warnings, TaskProg
 enum class NumberStatus { ok, invalid, out_of_range };
 NumberStatus parse_number(std::string_view tok, double& out);
 
-/// Splits s at spaces and tabs (runs count once).
+/// The blanks between an OBJ's or MTL's tokens: space, tab, vertical tab and
+/// form feed. Every reader of the two formats (the scans, the vertex counter,
+/// the text handed to tinyobjloader) uses this one definition.
+constexpr bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; }
+
+/// Splits s at blanks (runs count once).
 std::vector<std::string_view> split_ws(std::string_view s);
+
+/// `line` without its comment: from a '#' that starts the line or follows a
+/// blank (a '#' inside a name, "a#b", is kept), and without trailing blanks.
+std::string_view without_comment(std::string_view line);
+
+/// Appends `line` to `out` with each blank as a space: tinyobjloader splits
+/// at spaces and tabs only, and must see the tokens Kappa's scan saw.
+void append_with_spaces(std::string& out, std::string_view line);
 
 }  // namespace kappa

@@ -316,7 +316,7 @@ TEST(HostileInput, ReadingRefusesFifosDevicesAndHugeFilesAtOnce) {
       {cheap_render(tmp / "zero.obj", tmp / "x.exr"), "zero.obj: is not a regular file"},
       {cheap_render(tmp / "fifo_lib" / "cornell_box.obj", tmp / "x.exr"), "cornell_box.mtl: is not a regular file"},
       {cheap_render(tmp / "zero_lib" / "cornell_box.obj", tmp / "x.exr"), "cornell_box.mtl: is not a regular file"},
-      {cheap_render(tmp / "huge_lib" / "cornell_box.obj", tmp / "x.exr"), "is larger than Kappa's input limit of 16 GiB"},
+      {cheap_render(tmp / "huge_lib" / "cornell_box.obj", tmp / "x.exr"), "larger than Kappa's input limit of"},
       {with_cal, "cal.fifo: is not a regular file"},
       {cheap_render(tmp.path(), tmp / "x.exr"), "is a directory"},
   };
