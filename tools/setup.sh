@@ -15,6 +15,8 @@ packages=(
   libopenimageio-dev
   python3-numpy python3-openimageio python3-matplotlib
   locales
+  # /usr/bin/time: the hostile corpus bounds the peak memory of its big-file cases
+  time
   # clang and its runtime (libFuzzer, sanitizers) for tools/fuzz.sh
   clang libclang-rt-14-dev
 )

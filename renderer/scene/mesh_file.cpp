@@ -30,8 +30,9 @@ void refuse_other_mesh_formats(const std::filesystem::path& mesh) {
   };
   for (const auto& [suffix, format] : kOthers)
     if (ext == suffix)
-      throw InputError(mesh.string() + ": a " + format +
-                       " file: Kappa reads OBJ (.obj) and glTF 2.0 (.gltf, .glb) meshes; convert it (Blender exports both)");
+      throw InputError(mesh.string() + ": " + format +
+                       " files are not read: Kappa reads OBJ (.obj) and glTF 2.0 (.gltf, .glb) meshes; convert it "
+                       "(Blender exports both)");
 }
 
 }  // namespace

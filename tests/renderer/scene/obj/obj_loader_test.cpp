@@ -237,3 +237,62 @@ TEST(ObjLoader, TrianglesTooSmallToHitAreDroppedWithACount) {
 
 }  // namespace
 }  // namespace kappa
+
+namespace kappa {
+namespace {
+
+/// The material of the scene's only triangle.
+const Material& material_of_first_triangle(const Scene& scene) { return scene.materials.at(scene.material_of.at(0)); }
+
+TEST(ObjLexing, BlanksAreSpacesTabsVerticalTabsAndFormFeedsForEveryReader) {
+  Warnings w;
+  // The MTL's colour split by a vertical tab and a form feed, the OBJ's
+  // statements too: tinyobjloader must read what the scan read.
+  const Scene scene = load("mtllib m.mtl\n\vv 0 0 0\nv\f1 0 0\nv 0 1 0\nusemtl g\nf 1\v2 3\n", w,
+                           "newmtl g\nKd\v0.2\f0.4 0.6\n");
+  EXPECT_TRUE(w.empty()) << w.front();
+  ASSERT_EQ(scene.triangles.size(), 1u);
+  const Material& m = material_of_first_triangle(scene);
+  EXPECT_EQ(m.name, "g");
+  EXPECT_FLOAT_EQ(m.albedo.x, 0.2f);
+  EXPECT_FLOAT_EQ(m.albedo.y, 0.4f);
+  EXPECT_FLOAT_EQ(m.albedo.z, 0.6f);
+}
+
+TEST(ObjLexing, CommentsAfterStatementsAndAByteOrderMarkAreNotPartOfThem) {
+  Warnings w;
+  const Scene scene = load("mtllib m.mtl # the library\nv 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nusemtl red # the wall\nf 1 2 3\n",
+                           w, "\xEF\xBB\xBFnewmtl red # a comment\nKd 1 0 0 # pure\n");
+  EXPECT_TRUE(w.empty()) << w.front();
+  const Material& m = material_of_first_triangle(scene);
+  EXPECT_EQ(m.name, "red");
+  EXPECT_FLOAT_EQ(m.albedo.x, 1.0f);
+  EXPECT_FLOAT_EQ(m.albedo.y, 0.0f);
+}
+
+TEST(ObjLexing, EveryLibraryOfAnMtllibIsReadAndADefinitionAgainIsWarnedWithBothPlaces) {
+  test::TempDir dir;
+  test::write_file(dir / "a.mtl", "newmtl red\nKd 1 0 0\n");
+  test::write_file(dir / "b.mtl", "newmtl green\nKd 0 1 0\n\nnewmtl red\nKd 0 0 1\n");
+  test::write_file(dir / "m.obj", "mtllib a.mtl b.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl green\nf 1 2 3\nusemtl red\nf 1 3 2\n");
+  Scene scene;
+  Warnings w;
+  load_obj(dir / "m.obj", scene, w);
+  ASSERT_EQ(scene.triangles.size(), 2u);
+  EXPECT_EQ(scene.materials.at(scene.material_of[0]).name, "green");
+  EXPECT_FLOAT_EQ(scene.materials.at(scene.material_of[0]).albedo.y, 1.0f);
+  // The first definition holds, as in Blender 3.4's importer.
+  EXPECT_FLOAT_EQ(scene.materials.at(scene.material_of[1]).albedo.x, 1.0f);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("b.mtl:4: material 'red' is defined again; its first definition, at "), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("a.mtl:1, is used"), std::string::npos) << w[0];
+}
+
+TEST(ObjLexing, AFaceIndexOfMinusTwoToThe63IsRefusedWithoutOverflow) {
+  EXPECT_NE(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\n")
+                .find("m.obj:4: relative face index -9223372036854775808 points before the first vertex"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace kappa
