@@ -70,7 +70,9 @@ class TextJudge {
       }
       if (++m_line_bytes > kMaxTextLineBytes)
         refuse_at(m_file, m_line, "a line longer than " + byte_size(kMaxTextLineBytes) + ": not a text " + m_noun);
-      if ((c < 0x20 && c != '\t' && c != '\r' && c != '\v' && c != '\f') || c == 0x7F) {
+      // DEL is a control character in text, but valid UTF-8 in JSON's strings.
+      if ((c < 0x20 && c != '\t' && c != '\r' && c != '\v' && c != '\f') ||
+          (c == 0x7F && m_content != InputContent::utf8)) {
         char hex[8];
         std::snprintf(hex, sizeof hex, "0x%02X", c);
         refuse_at(m_file, m_line, std::string("binary data (byte ") + hex + "): not a text " + m_noun);
@@ -139,21 +141,34 @@ std::string read_input_file(const std::filesystem::path& file, const char* kind,
   const int fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) refuse(file, std::string("cannot open for reading: ") + std::strerror(errno));
   struct stat st {};
-  ::fstat(fd, &st);
+  // What was opened is still a regular file (not one swapped for a FIFO or
+  // /dev/zero since the check).
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    refuse(file, std::string("is not a regular file (a FIFO, socket or device), not ") + kind);
+  }
   std::string bytes;
   std::uint64_t hash = kFnv1aOffset;
   TextJudge judge(file, kind, content);
   try {
     const MemoryNeed need("reading '" + file.string() + "'", std::uint64_t(st.st_size));
-    // Grown as the content comes, in steps, never past what the file holds.
-    bytes.reserve(std::min<std::uint64_t>(std::uint64_t(st.st_size), std::uint64_t(1) << 20));
+    // One block first; once it passes the judge, room for the whole file
+    // (and the byte that finds its end) at once: the memory is what the
+    // content needs, not a doubling's, and a file bad from its first block
+    // costs one block.
     constexpr std::size_t kBlock = std::size_t(1) << 20;
+    bytes.reserve(std::min<std::uint64_t>(std::uint64_t(st.st_size) + 1, kBlock));
+    bool whole_reserved = false;
     for (;;) {
       const std::size_t at = bytes.size();
-      if (bytes.capacity() - at < kBlock)
-        bytes.reserve(std::max<std::size_t>(at + kBlock, std::min<std::uint64_t>(std::uint64_t(st.st_size) + 1, 2 * at)));
-      bytes.resize(at + kBlock);
-      const ssize_t n = ::read(fd, bytes.data() + at, kBlock);
+      if (at > 0 && !whole_reserved) {
+        bytes.reserve(std::max<std::uint64_t>(std::uint64_t(st.st_size) + 1, at + 1));
+        whole_reserved = true;
+      }
+      if (bytes.capacity() == at) bytes.reserve(at + kBlock);  // the file grew since stat()
+      const std::size_t room = std::min(kBlock, bytes.capacity() - at);
+      bytes.resize(at + room);
+      const ssize_t n = ::read(fd, bytes.data() + at, room);
       if (n < 0 && errno == EINTR) {
         bytes.resize(at);
         continue;

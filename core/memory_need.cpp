@@ -26,7 +26,7 @@ std::vector<Need>& needs() {
 
 MemoryNeed::MemoryNeed(std::string what, std::uint64_t bytes) : m_exceptions(std::uncaught_exceptions()) {
   std::lock_guard<std::mutex> lock(g_mutex);
-  if (needs().empty()) g_unwound = {};  // a new task: an old failure is not its
+  g_unwound = {};  // a failure already handled (an exception caught) is not this task's
   needs().reserve(16);  // so that a push while memory is short does not throw
   needs().push_back({std::move(what), bytes});
 }

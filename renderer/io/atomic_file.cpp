@@ -157,6 +157,8 @@ AtomicOutput::AtomicOutput(const fs::path& target, OutputKind kind) : m_target(t
   using Kind = OutputTarget::Kind;
   switch (where.kind) {
     case Kind::descriptor:
+      if (kind == OutputKind::image && !proc_available())
+        fail(target, 0, "cannot write an image to a device, FIFO or descriptor without /proc: give a file name");
       // A copy of the descriptor, so the output stays what it was when the
       // run started.
       m_descriptor = ::fcntl(where.descriptor, F_DUPFD_CLOEXEC, 3);
@@ -170,6 +172,7 @@ AtomicOutput::AtomicOutput(const fs::path& target, OutputKind kind) : m_target(t
       [[fallthrough]];
     case Kind::new_file:
       m_final = where.path;
+      m_new = where.kind == Kind::new_file;
       stage_in_folder(m_final.parent_path());
       return;
   }
@@ -181,7 +184,12 @@ AtomicOutput::AtomicOutput(const fs::path& target, OutputKind kind) : m_target(t
     // Made whole in memory, then copied: a render that fails sends nothing.
     if (!proc_available())
       fail(target, 0, "cannot write an image to a device, FIFO or descriptor without /proc: give a file name");
-    m_memory = std::make_unique<MemoryFile>("kappa-image");
+    try {
+      m_memory = std::make_unique<MemoryFile>("kappa-image");
+    } catch (...) {
+      if (m_descriptor >= 0) ::close(m_descriptor);  // the destructor does not run for a throwing constructor
+      throw;
+    }
     m_temp = m_memory->path();
   }
   m_committed = true;  // nothing to remove
@@ -204,16 +212,24 @@ void AtomicOutput::stage_in_folder(const fs::path& folder) {
   // A named temporary in the same folder, so the final rename cannot cross
   // file systems; registered for the signal handler before it exists, so no
   // interrupt can leave it behind.
-  m_named = folder / temporary_name(m_final.filename(), g_sequence++);
-  m_slot = claim_slot(m_named.string());
-  if (m_slot < 0) fail(m_target, 0, "cannot write: path too long or too many outputs at once");
-  m_staging = above_standard_descriptors(::open(m_named.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644));
-  if (m_staging < 0) {
+  // A name left by a process of the same id that was killed is skipped.
+  for (int attempt = 0;; ++attempt) {
+    m_named = folder / temporary_name(m_final.filename(), g_sequence++);
+    m_slot = claim_slot(m_named.string());
+    if (m_slot < 0) fail(m_target, 0, "cannot write: path too long or too many outputs at once");
+    const int fd = ::open(m_named.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     const int err = errno;
+    if (fd >= 0) {
+      m_staging = above_standard_descriptors(fd);
+      if (m_staging >= 0) break;
+      ::unlink(m_named.c_str());
+    }
     release_slot(m_slot);
     m_slot = -1;
-    m_committed = true;  // nothing to remove
-    fail(m_target, 0, std::string("cannot write: ") + std::strerror(err));
+    if (fd >= 0 || err != EEXIST || attempt > 100) {
+      m_committed = true;  // nothing to remove
+      fail(m_target, 0, std::string("cannot write: ") + std::strerror(fd >= 0 ? errno : err));
+    }
   }
   m_temp = m_named;
 }
@@ -300,6 +316,16 @@ void AtomicOutput::commit() {
   // system's quota) shows only here: refused, the temporary removed.
   if (::fsync(m_staging) != 0 && errno != EINVAL)  // EINVAL: cannot sync, not a failed write
     fail_output(m_target, "cannot write", errno);
+  if (m_unnamed && m_new) {
+    // Nothing there: the file gets its name at once, atomically, and a
+    // process killed now leaves nothing else. Something that appeared
+    // meanwhile is replaced as below.
+    if (::linkat(AT_FDCWD, proc_path(m_staging).c_str(), AT_FDCWD, m_final.c_str(), AT_SYMLINK_FOLLOW) == 0) {
+      m_committed = true;
+      return;
+    }
+    if (errno != EEXIST) fail_output(m_target, "cannot write", errno);
+  }
   if (m_unnamed) {
     // A name beside the target for an instant, then the rename: linkat()
     // cannot replace a file, rename() needs a name.

@@ -1,7 +1,9 @@
 // Output files appear whole or not at all. An output to a file is written to
 // an unnamed file in the file's folder (O_TMPFILE), which vanishes with the
 // process however it ends, even by SIGKILL; only once complete and on disk
-// is it given a name beside the file and renamed over it. Where the file
+// is it given its name (a new file) or a name beside the file it replaces and
+// renamed over it (a process killed in that instant leaves that name behind).
+// Where the file
 // system has no unnamed files, a named temporary (".kappa-PID-N.tmp", short
 // enough beside any name) takes its place, removed on failure, on
 // destruction, and on SIGINT/SIGTERM/SIGHUP.
@@ -78,6 +80,7 @@ class AtomicOutput {
   std::filesystem::path m_named;   ///< a named temporary in the folder, when there is one
   int m_staging = -1;    ///< the file the output is made in (unnamed, named or in memory), or -1
   bool m_unnamed = false;  ///< m_staging is an O_TMPFILE in the target's folder
+  bool m_new = false;      ///< nothing was at the target when the output was claimed
   std::unique_ptr<MemoryFile> m_memory;  ///< an image for a device or descriptor, made here first
   int m_descriptor = -1;  ///< a copy of the descriptor the path led to
   bool m_direct = false;  ///< text written straight to a device, FIFO or descriptor

@@ -141,6 +141,14 @@ OutputTarget resolve_output_target(const fs::path& given) {
     }
     if (S_ISLNK(st.st_mode)) {
       if (links + 1 > kMaxLinks) fail(given, 0, "cannot write: a loop of symbolic links (or more than 40 in a row)");
+      // As the kernel's fs.protected_symlinks: a link another user planted
+      // in a sticky, world-writable folder (/tmp) is not followed.
+      struct stat folder_st {};
+      if (::stat(real_folder.c_str(), &folder_st) == 0 && (folder_st.st_mode & S_ISVTX) && (folder_st.st_mode & S_IWOTH) &&
+          st.st_uid != ::geteuid() && st.st_uid != folder_st.st_uid)
+        fail(given, 0, "cannot write: '" + here.string() +
+                           "' is another user's symbolic link in a sticky folder, which is not followed (as "
+                           "fs.protected_symlinks)");
       std::error_code read_ec;
       const fs::path to = fs::read_symlink(here, read_ec);
       if (read_ec) fail(given, 0, "cannot write: cannot read the symbolic link '" + here.string() + "': " + read_ec.message());

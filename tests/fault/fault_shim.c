@@ -10,8 +10,12 @@
  *
  * With KAPPA_FAULT_COUNTS=FILE the counts are written to FILE at exit
  * ("write N\nfsync N\nrename N\nopen N\n"), so a test knows how many N to try.
- * Only calls made through the dynamic linker are seen (not those inside the C
- * library), which are the calls Kappa, libstdc++, OpenEXR and libpng make. */
+ * With KAPPA_FAULT_NO_TMPFILE=1, every open with O_TMPFILE fails with
+ * EOPNOTSUPP, as on a file system without unnamed files.
+ *
+ * Only calls made through the dynamic linker are seen: Kappa's, libstdc++'s
+ * (so OpenEXR's), not those the C library makes inside itself (libpng writes
+ * with fwrite: a PNG's writes are not failed, its fsync and rename are). */
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <errno.h>
@@ -57,6 +61,13 @@ __attribute__((constructor)) static void read_plan(void) {
 }
 
 /* Whether this call of `family` is the one to fail (errno set). */
+/* Whether an open with these flags is refused as unnamed (errno set). */
+static int no_tmpfile(int flags) {
+  if (!(flags & __O_TMPFILE) || !getenv("KAPPA_FAULT_NO_TMPFILE")) return 0;
+  errno = EOPNOTSUPP;
+  return 1;
+}
+
 static int fails(enum family family) {
   const long n = atomic_fetch_add(&calls[family], 1) + 1;
   if ((int)family != target_family || n != target_call) return 0;
@@ -115,21 +126,21 @@ int linkat(int from_dir, const char* from, int to_dir, const char* to, int flags
 int open(const char* path, int flags, ...) {
   int mode = 0;
   MODE_OF(flags, mode);
-  if (fails(OPEN)) return -1;
+  if (no_tmpfile(flags) || fails(OPEN)) return -1;
   return REAL(open)(path, flags, mode);
 }
 
 int open64(const char* path, int flags, ...) {
   int mode = 0;
   MODE_OF(flags, mode);
-  if (fails(OPEN)) return -1;
+  if (no_tmpfile(flags) || fails(OPEN)) return -1;
   return REAL(open64)(path, flags, mode);
 }
 
 int openat(int dir, const char* path, int flags, ...) {
   int mode = 0;
   MODE_OF(flags, mode);
-  if (fails(OPEN)) return -1;
+  if (no_tmpfile(flags) || fails(OPEN)) return -1;
   return REAL(openat)(dir, path, flags, mode);
 }
 

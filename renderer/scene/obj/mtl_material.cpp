@@ -45,10 +45,9 @@ bool read_here(const std::string& k) {
 /// The blanks split_ws splits at, and a line's carriage return.
 bool blank(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f' || c == '\r'; }
 
-/// The line without its comment and without blanks at either end.
+/// `s` without leading and trailing blanks (comments were dropped by
+/// scan_mtl, which made the text, as the OBJ scan drops them).
 std::string trimmed(std::string_view s) {
-  const auto hash = s.find('#');
-  if (hash != std::string_view::npos) s = s.substr(0, hash);
   while (!s.empty() && blank(s.back())) s.remove_suffix(1);
   while (!s.empty() && blank(s.front())) s.remove_prefix(1);
   return std::string(s);

@@ -49,7 +49,8 @@ constexpr bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\v' || c
 std::vector<std::string_view> split_ws(std::string_view s);
 
 /// `line` without its comment: from a '#' that starts the line or follows a
-/// blank (a '#' inside a name, "a#b", is kept), and without trailing blanks.
+/// blank ("usemtl red # the wall"); a '#' inside a word ("a#b") is kept.
+/// Trailing blanks dropped.
 std::string_view without_comment(std::string_view line);
 
 /// Appends `line` to `out` with each blank as a space: tinyobjloader splits

@@ -273,6 +273,21 @@ TEST(AtomicOutput, NamesUpToNameMaxAreWritten) {
   EXPECT_EQ(fs::path(temporary_name("x." + std::string(40, 'e'), 1)).extension(), ".tmp");
 }
 
+TEST(OutputTarget, AnotherUsersLinkInAStickyFolderIsNotFollowed) {
+  if (::geteuid() != 0) GTEST_SKIP() << "needs root to make a link of another user";
+  TempDir tmp;
+  const fs::path sticky = tmp / "sticky";
+  fs::create_directory(sticky);
+  ::chmod(sticky.c_str(), 01777);
+  fs::create_symlink(tmp / "victim.exr", sticky / "planted.exr");
+  ASSERT_EQ(::lchown((sticky / "planted.exr").c_str(), 1234, 1234), 0);
+  EXPECT_NE(refusal(sticky / "planted.exr").find("is another user's symbolic link in a sticky folder"), std::string::npos)
+      << refusal(sticky / "planted.exr");
+  // One's own link there is followed.
+  fs::create_symlink(tmp / "mine.exr", sticky / "mine.exr");
+  EXPECT_EQ(refusal(sticky / "mine.exr"), "");
+}
+
 TEST(AtomicOutput, AFileThatCouldNotBeReplacedIsRefusedBeforeTheWork) {
   // A file in a sticky folder that belongs to another user: only checked
   // for a user without root's override, so the test runs the check as one.
