@@ -59,7 +59,6 @@ std::vector<std::string> RunResult::err_lines() const {
   return lines;
 }
 
-namespace {
 std::string shell_quote(const std::string& s) {
   std::string q = "'";
   for (char c : s) {
@@ -68,7 +67,16 @@ std::string shell_quote(const std::string& s) {
   }
   return q + "'";
 }
-}  // namespace
+
+bool makes_a_file_in(pid_t pid, const std::filesystem::path& dir) {
+  std::error_code ec;
+  const std::string folder = std::filesystem::canonical(dir, ec).string() + "/";
+  for (const auto& fd : std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/fd", ec)) {
+    const auto to = std::filesystem::read_symlink(fd.path(), ec);
+    if (!ec && to.string().rfind(folder, 0) == 0) return true;
+  }
+  return false;
+}
 
 namespace {
 

@@ -2,6 +2,8 @@
 // procedural scenes built in memory.
 #pragma once
 
+#include <sys/types.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -65,6 +67,13 @@ RunResult run_kappa(const std::vector<std::string>& args, const std::filesystem:
 /// run_kappa under a wrapper command, e.g. {"prlimit", "--fsize=4096", "--"}
 /// or {"setpriv", "--reuid=65534", ...}: kappa is exec'd by it.
 RunResult run_kappa_under(const std::vector<std::string>& wrapper, const std::vector<std::string>& args);
+
+/// `s` quoted for a POSIX shell.
+std::string shell_quote(const std::string& s);
+
+/// Whether process `pid` holds a file open in `dir`: a render's outputs,
+/// made there unnamed (O_TMPFILE) once its scene is loaded.
+bool makes_a_file_in(pid_t pid, const std::filesystem::path& dir);
 
 std::string read_file(const std::filesystem::path& p);
 void write_file(const std::filesystem::path& p, const std::string& text);

@@ -55,7 +55,6 @@ class Scanner {
       : m_file(file), m_warnings(warnings), m_progress(progress) {}
 
   ObjScan run(const std::string& bytes) {
-    check_encoding(bytes);
     m_total_vertices = count_statements(bytes, "v");
     m_total_uvs = count_statements(bytes, "vt");
     m_total_normals = count_statements(bytes, "vn");
@@ -85,27 +84,6 @@ class Scanner {
   }
 
  private:
-  void check_encoding(const std::string& bytes) {
-    if (bytes.size() >= 2) {
-      const auto b0 = static_cast<unsigned char>(bytes[0]);
-      const auto b1 = static_cast<unsigned char>(bytes[1]);
-      if ((b0 == 0xFE && b1 == 0xFF) || (b0 == 0xFF && b1 == 0xFE))
-        fail(m_file, 1, "UTF-16 encoding is not supported (save the OBJ as UTF-8 or ASCII)");
-    }
-    std::size_t line = 1;
-    for (char ch : bytes) {
-      const auto c = static_cast<unsigned char>(ch);
-      if (c == '\n') ++line;
-      const bool control = (c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\v' && c != '\f') ||
-                           c == 0x7F;
-      if (control) {
-        char hex[8];
-        std::snprintf(hex, sizeof hex, "0x%02X", c);
-        fail(m_file, line, std::string("binary data (byte ") + hex + "): not a text OBJ file");
-      }
-    }
-  }
-
   /// Statements of `key` (v, vt, vn) in the whole file.
   static long long count_statements(const std::string& bytes, std::string_view key) {
     long long n = 0;

@@ -41,12 +41,6 @@ std::vector<Case> load_cases() {
   return cases;
 }
 
-std::string shell_quoted(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
 /// A file's content from its description: a string, a flood ({head, repeat
 /// with {i} numbered, times, tail}) or a regular polygon ({polygon: n}, its
 /// n vertices and one face).
@@ -119,16 +113,16 @@ TEST_P(HostileCorpus, BehavesAsItsCaseSays) {
 #else
   const bool bound_memory = true;
 #endif
-  std::string command = "cd " + shell_quoted(dir.string()) + " && ";
+  std::string command = "cd " + shell_quote(dir.string()) + " && ";
   if (c.contains("ulimit_v_mb")) command += "ulimit -v " + std::to_string(c["ulimit_v_mb"].get<long>() * 1024) + " && ";
-  command += "exec /usr/bin/time -f '%M %e' -o " + shell_quoted((tmp / "time").string()) + " timeout " +
-             std::to_string(c.value("max_s", 120)) + " " + shell_quoted(KAPPA_BINARY);
+  command += "exec /usr/bin/time -f '%M %e' -o " + shell_quote((tmp / "time").string()) + " timeout " +
+             std::to_string(c.value("max_s", 120)) + " " + shell_quote(KAPPA_BINARY);
   for (const auto& a : c["args"]) {
     if (a == "$QUICK") command += " --spp 1 --width 8 --height 8 -q --stats off";
-    else command += " " + shell_quoted(a.get<std::string>());
+    else command += " " + shell_quote(a.get<std::string>());
   }
-  command += " </dev/null >" + shell_quoted((tmp / "out").string()) + " 2>" + shell_quoted((tmp / "err").string());
-  const int status = std::system(("bash -c " + shell_quoted(command)).c_str());
+  command += " </dev/null >" + shell_quote((tmp / "out").string()) + " 2>" + shell_quote((tmp / "err").string());
+  const int status = std::system(("bash -c " + shell_quote(command)).c_str());
   const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   const std::string err = read_file(tmp / "err");
   const std::vector<std::string> lines = lines_of(err);

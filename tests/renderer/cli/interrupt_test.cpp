@@ -22,17 +22,6 @@ std::size_t entries(const std::filesystem::path& dir) {
   return n;
 }
 
-/// Whether process `pid` holds a file open in `dir` (its output being made).
-bool makes_a_file_in(pid_t pid, const std::filesystem::path& dir) {
-  std::error_code ec;
-  const std::string folder = std::filesystem::canonical(dir, ec).string() + "/";
-  for (const auto& fd : std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/fd", ec)) {
-    const auto to = std::filesystem::read_symlink(fd.path(), ec);
-    if (!ec && to.string().rfind(folder, 0) == 0) return true;
-  }
-  return false;
-}
-
 void interrupt_render(int sig) {
   test::TempDir dir;
   const auto out = dir / "image.exr";
@@ -48,9 +37,9 @@ void interrupt_render(int sig) {
   // Wait until the output is being made (an unnamed file in the folder,
   // open in the process): the render has started.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  while (!makes_a_file_in(pid, dir.path()) && std::chrono::steady_clock::now() < deadline)
+  while (!test::makes_a_file_in(pid, dir.path()) && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  const bool started = makes_a_file_in(pid, dir.path());
+  const bool started = test::makes_a_file_in(pid, dir.path());
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   ::kill(pid, sig);
   int status = 0;

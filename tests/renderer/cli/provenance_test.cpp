@@ -26,18 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Whether process `pid` holds a file open in `dir`: its outputs, claimed
-/// once the scene is loaded.
-bool makes_a_file_in(pid_t pid, const fs::path& dir) {
-  std::error_code ec;
-  const std::string folder = fs::canonical(dir, ec).string() + "/";
-  for (const auto& fd : fs::directory_iterator("/proc/" + std::to_string(pid) + "/fd", ec)) {
-    const auto to = fs::read_symlink(fd.path(), ec);
-    if (!ec && to.string().rfind(folder, 0) == 0) return true;
-  }
-  return false;
-}
-
 struct Change {
   const char* what;
   void (*apply)(const fs::path& scene_dir);
