@@ -1,8 +1,17 @@
-// Intel Embree 3 as the reference accelerator: a production BVH (SAH with
-// spatial splits at RTC_BUILD_QUALITY_HIGH) to measure the grid against.
+// Intel Embree 3 as the reference accelerator, in two modes:
+//   embree       robust mode (RTC_SCENE_FLAG_ROBUST): its watertight Pluecker
+//                test on triangles stored with their vertices (Triangle4v),
+//                in an SAH BVH *without* spatial splits: Embree 3.13 builds
+//                robust scenes with its plain SAH builder whatever the
+//                quality asked (scene.cpp, createTriangleAccel);
+//   embree-fast  Embree as a user gets it without the robust flag: the
+//                Moeller test, not watertight (a ray may slip between two
+//                triangles that share an edge), on Triangle4 leaves in an SAH
+//                BVH with spatial splits (RTC_BUILD_QUALITY_HIGH).
+// Both are peers to measure the grids against; neither is exact.
 //
-// Not bitwise naive: Embree has its own watertight (robust-mode Pluecker)
-// triangle test, so t and barycentrics agree with naive's to float rounding,
+// Not bitwise naive: Embree has its own triangle tests (robust mode's is
+// watertight), so t and barycentrics agree with naive's to float rounding,
 // and where two triangles tie in t (shared edges and vertices, coplanar
 // overlaps) it may return either one, not the lower id. Kappa's (tmin, tmax]
 // is passed as Embree's closed [tnear, tfar] with tnear = the next float above
@@ -25,6 +34,9 @@
 
 namespace kappa {
 
+/// Which Embree a build is (the comment above).
+enum class EmbreeMode { robust, fast };
+
 class EmbreeAccelerator final : public Accelerator {
  public:
   /// Builds the BVH. Throws std::runtime_error (one line) if Embree fails.
@@ -32,7 +44,7 @@ class EmbreeAccelerator final : public Accelerator {
   /// `filtered`: the geometry gets the filter callback that filtered
   /// queries need (AccelOptions::filtered); an unfiltered build refuses them.
   explicit EmbreeAccelerator(std::span<const Triangle> triangles, TaskProgress* progress = nullptr,
-                             bool filtered = false);
+                             bool filtered = false, EmbreeMode mode = EmbreeMode::robust);
   ~EmbreeAccelerator() override;
   EmbreeAccelerator(const EmbreeAccelerator&) = delete;  // Embree holds `this` in its callbacks
   EmbreeAccelerator& operator=(const EmbreeAccelerator&) = delete;
@@ -41,7 +53,8 @@ class EmbreeAccelerator final : public Accelerator {
   bool any_hit(const Ray& ray) const override;
   std::optional<Hit> closest_hit(const Ray& ray, const FunctionHitFilter& filter) const override;
   bool any_hit(const Ray& ray, const FunctionHitFilter& filter) const override;
-  std::string_view name() const override { return "embree"; }
+  std::string_view name() const override { return m_mode == EmbreeMode::robust ? "embree" : "embree-fast"; }
+  EmbreeMode mode() const { return m_mode; }
   AccelKind kind() const override { return AccelKind::embree; }
 
   /// Bytes Embree holds for this accelerator after the build (its copy of
@@ -66,6 +79,7 @@ class EmbreeAccelerator final : public Accelerator {
   double m_build_s = 0;
   std::uint64_t m_degenerate = 0;
   bool m_filtered = false;
+  EmbreeMode m_mode = EmbreeMode::robust;
   std::mutex m_error_mutex;  ///< the build reports errors from TBB workers
   std::string m_error;       ///< first error reported, "" if none
 };

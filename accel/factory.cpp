@@ -31,12 +31,14 @@ Grid2Options grid2_options(const AccelOptions& options) {
   return grid2;
 }
 
-std::vector<std::string> accelerator_names() { return {"embree", "grid", "grid2", "naive"}; }
+std::vector<std::string> accelerator_names() { return {"embree", "embree-fast", "grid", "grid2", "naive"}; }
 
 std::unique_ptr<Accelerator> make_accelerator(std::string_view name, std::span<const Triangle> triangles,
                                               const AccelOptions& options, TaskProgress* progress) {
   if (name == "naive") return std::make_unique<NaiveAccelerator>(triangles);
   if (name == "embree") return std::make_unique<EmbreeAccelerator>(triangles, progress, options.filtered);
+  if (name == "embree-fast")
+    return std::make_unique<EmbreeAccelerator>(triangles, progress, options.filtered, EmbreeMode::fast);
   if (name == "grid") return std::make_unique<UniformGrid>(triangles, grid_options(options), progress);
   if (name == "grid2") return std::make_unique<NestedGrid>(triangles, grid2_options(options), progress);
   throw InputError("unknown accelerator '" + std::string(name) + "'");

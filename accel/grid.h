@@ -163,6 +163,12 @@ class UniformGrid final : public Accelerator, public CellLayout {
   std::optional<Hit> closest_hit(const Ray& ray, Recorder& recorder, const Filter& filter = {}) const;
   template <class Recorder, HitFilter Filter = NoHitFilter>
   bool any_hit(const Ray& ray, Recorder& recorder, const Filter& filter = {}) const;
+  /// The any-hit walk, returning the triangle that stopped it (kNoTriangle
+  /// if nothing did): what an occluder cache keeps.
+  template <class Recorder, HitFilter Filter = NoHitFilter>
+  TriangleId occluder_of(const Ray& ray, Recorder& recorder, const Filter& filter = {}) const;
+  /// The triangles the grid was built over, by TriangleId.
+  std::span<const Triangle> triangles() const { return m_triangles; }
   /// Walks every cell of the ray's [tmin, tmax] inside the grid, testing
   /// every triangle met (no stop at a hit); returns the closest hit.
   template <class Recorder>

@@ -134,8 +134,14 @@ class NestedGrid final : public Accelerator, public CellLayout {
   std::optional<Hit> closest_hit(const Ray& ray, Recorder& recorder, const Filter& filter = {}) const;
   template <class Recorder, HitFilter Filter = NoHitFilter>
   bool any_hit(const Ray& ray, Recorder& recorder, const Filter& filter = {}) const;
+  /// The any-hit walk, returning the triangle that stopped it (kNoTriangle
+  /// if nothing did): what an occluder cache keeps.
+  template <class Recorder, HitFilter Filter = NoHitFilter>
+  TriangleId occluder_of(const Ray& ray, Recorder& recorder, const Filter& filter = {}) const;
   template <class Recorder>
   std::optional<Hit> walk_whole(const Ray& ray, Recorder& recorder) const;
+  /// The triangles the structure was built over, by TriangleId.
+  std::span<const Triangle> triangles() const { return m_triangles; }
 
   const Grid2Info& info() const { return m_info; }
   /// Triangle ids in leaf i, ascending.

@@ -87,6 +87,7 @@ struct Grid2Walk {
         if (test_any(prepared, triangles[id], id, ray.tmin, ray.tmax, filter)) {
           recorder.hit();
           occluded = true;
+          best.triangle = id;  // the occluder (occluder_of)
           return true;
         }
       } else {
@@ -124,6 +125,7 @@ struct Grid2Walk {
   [[gnu::always_inline]] bool test_one(const Triangle& triangle, TriangleId id) {
     if constexpr (AnyHit) {
       occluded = test_any(prepared, triangle, id, ray.tmin, ray.tmax, filter);
+      if (occluded) best.triangle = id;  // the occluder (occluder_of)
       return occluded;
     } else {
       test_closest(prepared, triangle, id, ray.tmin, best, filter);
@@ -146,8 +148,10 @@ struct Grid2Walk {
       // shown it (test_any's and test_closest's order).
       if constexpr (AnyHit) {
         if (accept4(lanes, i, ray.tmin, ray.tmax) &&
-            filter_accepts(filter, Hit{ids[i], lanes.t[i], lanes.b[0][i], lanes.b[1][i], lanes.b[2][i]}))
+            filter_accepts(filter, Hit{ids[i], lanes.t[i], lanes.b[0][i], lanes.b[1][i], lanes.b[2][i]})) {
+          best.triangle = ids[i];  // the occluder (occluder_of)
           return occluded = true;
+        }
       } else {
         if (accept4(lanes, i, ray.tmin, closest_limit(best)) && closer_than(lanes.t[i], ids[i], best)) {
           const Hit candidate{ids[i], lanes.t[i], lanes.b[0][i], lanes.b[1][i], lanes.b[2][i]};
@@ -351,6 +355,12 @@ template <class Recorder, HitFilter Filter>
 bool NestedGrid::any_hit(const Ray& ray, Recorder& recorder, const Filter& filter) const {
   Hit unused;
   return traverse<GridWalk::any, Recorder, Filter>(ray, unused, recorder, filter);
+}
+
+template <class Recorder, HitFilter Filter>
+TriangleId NestedGrid::occluder_of(const Ray& ray, Recorder& recorder, const Filter& filter) const {
+  Hit occluder;
+  return traverse<GridWalk::any, Recorder, Filter>(ray, occluder, recorder, filter) ? occluder.triangle : kNoTriangle;
 }
 
 template <class Recorder>

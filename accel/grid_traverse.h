@@ -167,6 +167,7 @@ bool UniformGrid::traverse(const Ray& ray, Hit& best, Recorder& recorder, const 
         } else if constexpr (AnyHit) {
           if (test_any(prepared, m_triangles[id], id, ray.tmin, ray.tmax, filter)) {
             recorder.hit();
+            best.triangle = id;  // the occluder (occluder_of): an any-hit walk keeps no t
             return done(true);
           }
         } else {
@@ -217,6 +218,13 @@ template <class Recorder, HitFilter Filter>
 bool UniformGrid::any_hit(const Ray& ray, Recorder& recorder, const Filter& filter) const {
   Hit unused;
   return traverse<GridWalk::any, Recorder, true, Filter>(ray, unused, recorder, filter);
+}
+
+template <class Recorder, HitFilter Filter>
+TriangleId UniformGrid::occluder_of(const Ray& ray, Recorder& recorder, const Filter& filter) const {
+  Hit occluder;
+  return traverse<GridWalk::any, Recorder, true, Filter>(ray, occluder, recorder, filter) ? occluder.triangle
+                                                                                          : kNoTriangle;
 }
 
 template <class Recorder>

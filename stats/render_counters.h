@@ -79,6 +79,12 @@ struct RenderCounters {
   std::array<std::uint64_t, kBounceLobes> lobe_ticks{};
   /// The lobes were counted (else every bounce was diffuse, in `classes`).
   bool lobes_counted = false;
+  /// The occluder cache's counts (renderer/render/occluder_cache.h), kept
+  /// apart from the shadow class's walks, whose rays, cells and tests stay
+  /// the paper's quantities: shadow rays for whose light a triangle was
+  /// remembered (each one triangle test), and those it occluded, answered
+  /// without a walk.
+  std::uint64_t occluder_cache_tests = 0, occluder_cache_hits = 0;
 
   void merge(const RenderCounters& o) {
     for (std::size_t k = 0; k < kRenderClasses; ++k) {
@@ -87,6 +93,8 @@ struct RenderCounters {
       capped[k] += o.capped[k];
     }
     lobes_counted = lobes_counted || o.lobes_counted;
+    occluder_cache_tests += o.occluder_cache_tests;
+    occluder_cache_hits += o.occluder_cache_hits;
     for (std::size_t k = 0; k < kBounceLobes; ++k) {
       lobes[k].merge(o.lobes[k]);
       lobe_ticks[k] += o.lobe_ticks[k];

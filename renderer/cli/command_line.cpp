@@ -48,6 +48,11 @@ void add_render_flags(CLI::App& render, RenderOptions& o, bool converge) {
                     "the same image, to measure what that saves")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  render.add_option("--occluder-cache", o.occluder_cache,
+                    "on: a shadow ray first tests the triangle that last occluded a ray toward its light (grid and "
+                    "grid2), the same image with fewer walks; off: every shadow ray walks, to measure what it saves")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   if (!converge) {
     render.add_option("--time-budget", o.time_budget,
                       "render in passes until this time is spent: a number and a unit, 500ms, 30s, 2m, 1h");

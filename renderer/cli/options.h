@@ -20,6 +20,7 @@ struct RenderOptions {
   std::string sampler = "sobol";  ///< --sampler: independent | stratified | sobol (the most efficient: docs/command-line.md)
   std::string light_sampling = "mis";  ///< --light-sampling: mis | nee | bsdf
   std::string specialise = "on";  ///< --specialise: on | off (the general integrator, for measuring)
+  std::string occluder_cache = "on";  ///< --occluder-cache: on | off (every shadow ray walked, for measuring)
   std::string time_budget;      ///< --time-budget: "500ms", "30s", "2m", "1h"
   bool time_budget_given = false;
   std::string target_relmse;    ///< --target-relmse, a number above 0
@@ -66,7 +67,7 @@ struct CastOptions {
 
 struct BenchOptions {
   std::string scene;
-  std::vector<std::string> accels = {"naive", "grid", "grid2", "embree"};
+  std::vector<std::string> accels = {"naive", "grid", "grid2", "embree", "embree-fast"};
   std::vector<std::string> rays = {"camera", "bounce", "shadow", "lines"};
   std::vector<int> threads = {1, 2};
   int repeat = 3;

@@ -30,6 +30,7 @@ RenderSettings render_settings_of(const RenderOptions& options, const AovSelecti
   settings.sampler = parse_sampler(options.sampler);
   settings.light_sampling = parse_light_sampling(options.light_sampling);
   settings.specialise = options.specialise == "on";
+  settings.occluder_cache = options.occluder_cache == "on";
   settings.aov = aov;
   settings.stats = options.stats == "on";
   settings.stats_max_bytes = options.build.max_bytes();

@@ -38,6 +38,10 @@ struct RenderSettings {
   /// The integrator compiled for what the scene has (false: the general one,
   /// the same image, to measure what specialising saves).
   bool specialise = true;
+  /// Shadow rays test the triangle that last occluded a ray toward the same
+  /// light first (occluder_cache.h), where the accelerator can (the grids):
+  /// the same image, less work; false to measure what it saves.
+  bool occluder_cache = true;
   AovSelection aov;
   bool stats = false;       ///< per-class counters (grid only), chosen once per frame
   std::uint64_t stats_max_bytes = std::uint64_t(1) << 32;  ///< budget for per-cell counters plus the grid
@@ -65,6 +69,7 @@ struct RenderResult {
   SppSpread spp_spread;              ///< samples per pixel, min, mean and max
   std::string stop_reason;           ///< the planner's (PassPlanner::stop_reason), "" without one
   std::string path_variant;          ///< the integrator that ran (path_variant_name)
+  bool occluder_cache = false;       ///< shadow rays went through the occluder cache (occluder_cache.h)
 };
 
 /// Called after each finished tile with (tiles done, tiles in all); it must be

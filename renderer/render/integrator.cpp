@@ -5,6 +5,7 @@
 
 #include "accel/dispatch.h"
 #include "renderer/render/frames.h"
+#include "renderer/render/occluder_cache.h"
 
 namespace kappa {
 
@@ -12,9 +13,11 @@ RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSe
                     const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   // The one per-frame choice: the accelerator's concrete type and the queries.
+  bool cached = false;
   RenderResult result = visit_accelerator(accel, [&](const auto& a) {
-#ifndef KAPPA_NO_STATS  // a build without statistics has no trace of them here
     using A = std::decay_t<decltype(a)>;
+    cached = settings.occluder_cache && OccluderWalker<A>;
+#ifndef KAPPA_NO_STATS  // a build without statistics has no trace of them here
     if (settings.stats) {
       if constexpr (CellWalker<A>) return render_counting(scene, a, settings, film, progress);
       else return render_counting_classes(scene, a, settings, film, progress);
@@ -23,6 +26,7 @@ RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSe
     return render_plain(scene, a, settings, film, progress);
   });
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.occluder_cache = cached;
   return result;
 }
 

@@ -16,6 +16,7 @@
 #include "renderer/render/environment_map.h"
 #include "renderer/render/interaction.h"
 #include "renderer/render/lights.h"
+#include "renderer/render/occluder_cache.h"
 #include "renderer/render/path_variant.h"
 #include "renderer/render/samplers.h"
 #include "renderer/render/shading_point.h"
@@ -215,13 +216,15 @@ class PathTracer {
     return p;
   }
 
-  /// A shadow ray's query, through the cut-outs where the scene has them.
+  /// A shadow ray's query toward the light keyed `light` (occluder_cache.h:
+  /// its index in m_lights, and for the environment the ray's part of the
+  /// sky), through the cut-outs where the scene has them.
   template <PathVariant V, class Queries>
-  bool occluded(const Ray& r, Queries& q) const {
+  bool occluded(const Ray& r, LightKey light, Queries& q) const {
     if constexpr (V.extras) {
-      if (m_cutouts.any()) return q.shadow(r, m_cutouts);
+      if (m_cutouts.any()) return q.shadow(r, light, m_cutouts);
     }
-    return q.shadow(r);
+    return q.shadow(r, light);
   }
 
   /// The shading normal on the side of the oriented geometric normal n (the
@@ -253,13 +256,14 @@ class PathTracer {
   /// are parallel and unoccluded to infinity.
   template <PathVariant V, class Queries>
   std::optional<LightSample> sample_punctual(const SurfacePoint& sp, const Vec3f& n, bool two_sided,
-                                             const PunctualLight& light, float pmf, Queries& q) const {
+                                             const PunctualLight& light, std::size_t index, float pmf,
+                                             Queries& q) const {
     if (!(pmf > 0.0f)) return std::nullopt;
     if (light.type == PunctualLight::Type::directional) {
       const Vec3f wi = -light.direction;
       const float cos_s = dot(n, wi);
       if ((!two_sided && cos_s <= 0.0f) || cos_s == 0.0f) return std::nullopt;
-      if (occluded<V>(Ray{offset_ray_origin(sp, wi), wi}, q)) return std::nullopt;
+      if (occluded<V>(Ray{offset_ray_origin(sp, wi), wi}, light_key(index), q)) return std::nullopt;
       return LightSample{wi, light.intensity, pmf, cos_s, true};
     }
     const Vec3f to_light = light.position - sp.p;
@@ -279,7 +283,7 @@ class PathTracer {
     const Vec3f d = light.position - from;
     const float len = length(d);
     if (!(len > 0.0f)) return std::nullopt;
-    if (occluded<V>(Ray{from, d / len, 0.0f, len * (1.0f - kShadowEpsilon)}, q)) return std::nullopt;
+    if (occluded<V>(Ray{from, d / len, 0.0f, len * (1.0f - kShadowEpsilon)}, light_key(index), q)) return std::nullopt;
     return LightSample{wi, light.intensity * (falloff / dist2), pmf, cos_s, true};
   }
 
@@ -298,7 +302,8 @@ class PathTracer {
     else (void)choice;
     if constexpr (V.extras) {
       if (const std::ptrdiff_t k = m_lights.punctual(light); k >= 0)
-        return sample_punctual<V>(sp, n, two_sided, m_scene.punctual_lights[std::size_t(k)], m_lights.pmf(light), q);
+        return sample_punctual<V>(sp, n, two_sided, m_scene.punctual_lights[std::size_t(k)], light,
+                                  m_lights.pmf(light), q);
     }
     if constexpr (V.environment) {
       if (light == m_lights.environment_index()) {
@@ -311,7 +316,7 @@ class PathTracer {
             if ((!two_sided && cos_s <= 0.0f) || cos_s == 0.0f) return std::nullopt;
             const float light_pdf = m_lights.pmf_environment() * es->pdf;
             if (!(light_pdf > 0.0f)) return std::nullopt;
-            if (occluded<V>(Ray{offset_ray_origin(sp, es->wi), es->wi}, q)) return std::nullopt;
+            if (occluded<V>(Ray{offset_ray_origin(sp, es->wi), es->wi}, light_key(light, es->wi), q)) return std::nullopt;
             return LightSample{es->wi, es->Le, light_pdf, cos_s};
           }
         }
@@ -323,7 +328,7 @@ class PathTracer {
         const Vec3f wi = Frame(n).to_world(local);
         const float light_pdf = m_lights.pmf_environment() * dir_pdf;
         if (!(light_pdf > 0.0f)) return std::nullopt;
-        if (occluded<V>(Ray{offset_ray_origin(sp, wi), wi}, q)) return std::nullopt;
+        if (occluded<V>(Ray{offset_ray_origin(sp, wi), wi}, light_key(light, wi), q)) return std::nullopt;
         return LightSample{wi, m_scene.environment, light_pdf, local.z};
       }
     }
@@ -350,7 +355,7 @@ class PathTracer {
       const Vec3f d = to - from;
       const float len = length(d);
       if (!(len > 0.0f)) return std::nullopt;
-      if (occluded<V>(Ray{from, d / len, 0.0f, len * (1.0f - kShadowEpsilon)}, q)) return std::nullopt;
+      if (occluded<V>(Ray{from, d / len, 0.0f, len * (1.0f - kShadowEpsilon)}, light_key(light), q)) return std::nullopt;
       const Material& emitter = m_scene.materials[m_scene.material_of[id]];
       Vec3f Le = emitter.emission;
       if constexpr (V.surfaces == Surfaces::general) {

@@ -18,6 +18,7 @@
 #include "accel/recorder.h"
 #include "core/hash.h"
 #include "renderer/bsdf/lobe_sample.h"
+#include "renderer/render/occluder_cache.h"
 #include "renderer/render/sampling.h"
 #include "stats/cost_model.h"
 #include "stats/query_clock.h"
@@ -78,11 +79,17 @@ bool filtered_any(const A& accel, const Ray& r, const F& filter) {
 }
 
 /// Every query takes an any-hit filter, NoHitFilter (compiled out) unless
-/// the frame's scene has cut-outs.
+/// the frame's scene has cut-outs. A shadow ray names its light (LightKey),
+/// for the occluder cache where the accelerator has one (OccluderWalker) and
+/// the frame uses it (`occluder_cache`, set once per frame).
 template <class A>
 struct PlainQueries {
+  explicit PlainQueries(const A& a, bool use_occluder_cache = false) : accel(a), occluder_cache(use_occluder_cache) {}
+
   const A& accel;
+  bool occluder_cache;
   std::uint64_t rays = 0;
+  OccluderCache cache;
 
   QueryWork work() const { return {}; }
   void begin_path(std::uint64_t /*pixel*/, std::uint64_t /*sample*/) {}
@@ -97,8 +104,18 @@ struct PlainQueries {
     return closest(r, depth, filter);
   }
   template <HitFilter F = NoHitFilter>
-  bool shadow(const Ray& r, const F& filter = {}) {
+  bool shadow(const Ray& r, LightKey light, const F& filter = {}) {
     ++rays;
+    if constexpr (OccluderWalker<A>) {
+      if (occluder_cache) {
+        const TriangleId last = cache.occluder(light);
+        if (last != kNoTriangle && occludes(accel.triangles(), last, r, filter)) return true;
+        NoRecorder none;
+        const TriangleId id = accel.occluder_of(r, none, filter);
+        cache.remember(light, id);
+        return id != kNoTriangle;
+      }
+    }
     return filtered_any(accel, r, filter);
   }
 };
@@ -153,7 +170,7 @@ class ClassQueries {
                                        std::size_t(lobe));
   }
   template <HitFilter F = NoHitFilter>
-  bool shadow(const Ray& r, const F& filter = {}) {
+  bool shadow(const Ray& r, LightKey /*light*/, const F& filter = {}) {
     const auto f = counted_filter(filter, m_counters.classes[kShadow].totals);
     return counted<bool>(kShadow, [&] { return filtered_any(m_accel, r, f); });
   }
@@ -203,9 +220,15 @@ class CountingQueries {
 
  public:
   /// Per-cell counts are kept if `counters` has per-cell arrays, for the
-  /// paths `sampling` picks.
-  CountingQueries(const Walker& walker, RenderCounters& counters, CellSampling sampling = {})
-      : m_walker(walker), m_counters(counters), m_sampling(sampling), m_per_cell(counters.classes[0].per_cell()) {}
+  /// paths `sampling` picks; shadow rays go through an occluder cache if
+  /// `occluder_cache`.
+  CountingQueries(const Walker& walker, RenderCounters& counters, CellSampling sampling = {},
+                  bool occluder_cache = false)
+      : m_walker(walker),
+        m_counters(counters),
+        m_sampling(sampling),
+        m_per_cell(counters.classes[0].per_cell()),
+        m_occluder_cache(occluder_cache) {}
 
   /// Chooses, once per path, whether its rays are counted per cell.
   void begin_path(std::uint64_t pixel, std::uint64_t sample) {
@@ -257,10 +280,28 @@ class CountingQueries {
     return result;
   }
 
+  /// A shadow ray: the occluder cache's test first, where the frame uses
+  /// it, counted apart (RenderCounters::occluder_cache_*); a ray it answers
+  /// is no walk, so not in the class's rays. Otherwise the walk, counted in
+  /// the shadow class, its occluder remembered.
   template <HitFilter F = NoHitFilter>
-  bool shadow(const Ray& r, const F& filter = {}) {
+  bool shadow(const Ray& r, LightKey light, const F& filter = {}) {
+    if (m_occluder_cache) {
+      if (const TriangleId last = m_cache.occluder(light); last != kNoTriangle) {
+        ++m_counters.occluder_cache_tests;
+        if (occludes(m_walker.triangles(), last, r, filter)) {
+          ++m_counters.occluder_cache_hits;
+          ++rays;
+          return true;
+        }
+      }
+    }
     const auto f = counted_filter(filter, m_counters.classes[kShadow].totals);
-    return counted<bool>(kShadow, [&](auto& tally) { return m_walker.any_hit(r, tally, f); });
+    return counted<bool>(kShadow, [&](auto& tally) {
+      const TriangleId id = m_walker.occluder_of(r, tally, f);
+      if (m_occluder_cache) m_cache.remember(light, id);
+      return id != kNoTriangle;
+    });
   }
 
  private:
@@ -304,6 +345,8 @@ class CountingQueries {
   CellSampling m_sampling;
   bool m_per_cell;
   bool m_path_per_cell = false;
+  bool m_occluder_cache;
+  OccluderCache m_cache;
 };
 
 }  // namespace kappa

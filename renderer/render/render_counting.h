@@ -40,11 +40,11 @@ RenderResult render_counting_with(const Scene& scene, const Walker& grid, const 
   RenderResult result;
   if (shared[0])
     result = render_tiles(scene, settings, film, progress, [&] {
-      return CountingQueries<Walker, PerCell::shared>(grid, per_thread.local(), sampling);
+      return CountingQueries<Walker, PerCell::shared>(grid, per_thread.local(), sampling, settings.occluder_cache);
     });
   else
     result = render_tiles(scene, settings, film, progress, [&] {
-      return CountingQueries<Walker, PerCell::own>(grid, per_thread.local(), sampling);
+      return CountingQueries<Walker, PerCell::own>(grid, per_thread.local(), sampling, settings.occluder_cache);
     });
   // Merge into one thread's counters: no further copy of the arrays (and
   // none at all of shared ones).

@@ -10,7 +10,9 @@ namespace kappa {
 
 RenderResult render_plain(const Scene& scene, const UniformGrid& grid, const RenderSettings& settings, Film& film,
                           const ProgressCallback& progress) {
-  return render_tiles(scene, settings, film, progress, [&] { return PlainQueries<UniformGrid>{grid}; });
+  return render_tiles(scene, settings, film, progress, [&] {
+    return PlainQueries<UniformGrid>{grid, settings.occluder_cache};
+  });
 }
 
 }  // namespace kappa

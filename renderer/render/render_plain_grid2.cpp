@@ -9,7 +9,9 @@ namespace kappa {
 
 RenderResult render_plain(const Scene& scene, const NestedGrid& grid, const RenderSettings& settings, Film& film,
                           const ProgressCallback& progress) {
-  return render_tiles(scene, settings, film, progress, [&] { return PlainQueries<NestedGrid>{grid}; });
+  return render_tiles(scene, settings, film, progress, [&] {
+    return PlainQueries<NestedGrid>{grid, settings.occluder_cache};
+  });
 }
 
 }  // namespace kappa

@@ -86,6 +86,10 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
     }
     rays["all"] = ray_class_section(summary(all, all_per_cell_rays, all_visits, theta, all_seconds, uniform),
                                     std::nullopt);
+    // Shadow rays the occluder cache answered walked nothing: apart from the class's walks.
+    rays["shadow"]["occluder_cache"] = {{"enabled", result.occluder_cache},
+                                        {"tests", rc.occluder_cache_tests},
+                                        {"hits", rc.occluder_cache_hits}};
     if (const auto levels = cells->levels(); !levels.empty()) rays["all"]["levels"] = level_sections(all, levels);
     // Bounce rays by the lobe that sampled them. A scene whose surfaces are
     // all Lambertian counts no lobes: its bounces are all diffuse.
@@ -124,6 +128,9 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
       all_seconds += clock.seconds(rc.ticks[k]);
     }
     rays["all"] = section(all, all_seconds);
+    rays["shadow"]["occluder_cache"] = {{"enabled", result.occluder_cache},
+                                        {"tests", rc.occluder_cache_tests},
+                                        {"hits", rc.occluder_cache_hits}};
     nlohmann::ordered_json by_lobe;
     for (std::size_t l = 0; l < kBounceLobes; ++l) {
       ClassTotals t;

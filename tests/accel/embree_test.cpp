@@ -163,8 +163,9 @@ std::vector<Ray> tie_rays(std::span<const Triangle> tris, std::size_t n, std::ui
 /// Random rays: no mismatch, the same any_hit, and ties plus grazes at most 1
 /// in 1000 hits. Rays aimed at vertices and edges: ties and grazes are
 /// expected there, but each must be a genuine one.
-void expect_agreement(const char* what, std::span<const Triangle> tris, std::size_t random, std::size_t aimed) {
-  const EmbreeAccelerator embree(tris);
+void expect_agreement(const char* what, std::span<const Triangle> tris, std::size_t random, std::size_t aimed,
+                      EmbreeMode mode = EmbreeMode::robust) {
+  const EmbreeAccelerator embree(tris, nullptr, false, mode);
   std::printf("[ embree   ] %s: %zu triangles, %.2f MiB, built in %.1f ms\n", what, tris.size(),
               double(embree.bytes()) / double(1 << 20), embree.build_s() * 1e3);
   const Agreement r = compare(tris, embree, random_rays(tris, random, 1));
@@ -252,6 +253,19 @@ TEST(Embree, FullBunnyFromSharedScenesAgreesWithNaive) {
   if (shared.empty()) GTEST_SKIP() << "../shared/scenes not present (a user's clone): skipping the 69k-triangle bunny";
   const auto tris = test::load_mesh(shared / "bunny" / "bunny.obj");
   expect_agreement("bunny", tris, 800, 300);
+}
+
+// Embree as users get it by default (no robust flag; spatial splits): the
+// same agreement with naive on random rays, to rounding, and only genuine
+// ties and grazes at vertices and edges (its Moeller test may let a ray
+// through an edge, which counts as a graze of naive's hit).
+TEST(Embree, FastModeAgreesWithNaiveToRounding) {
+  for (std::size_t n : {1, 10, 1000, 10000}) {
+    const auto tris = test::random_soup(n, std::uint32_t(n), n < 100 ? 0.5f : 0.1f);
+    expect_agreement(("fast soup " + std::to_string(n)).c_str(), tris, n < 1000 ? 3000 : 1500, 500, EmbreeMode::fast);
+  }
+  const auto bunny = test::load_mesh(test::assets_dir() / "bunny-lowres" / "bunny_lowres.obj");
+  expect_agreement("fast bunny-lowres", bunny, 4000, 1000, EmbreeMode::fast);
 }
 
 TEST(Embree, ClosedBoxIsWatertight) {
@@ -343,6 +357,13 @@ TEST(Embree, FactoryNamesItAndReportsMemoryAndBuildTime) {
   EXPECT_GE(embree.bytes(), 48u * tris.size());
   EXPECT_LT(embree.bytes(), 10000u * tris.size());
   EXPECT_GT(embree.build_s(), 0.0);
+  // The other mode, by its own name.
+  EXPECT_NE(std::find(names.begin(), names.end(), "embree-fast"), names.end());
+  const auto fast = make_accelerator("embree-fast", tris);
+  EXPECT_EQ(fast->name(), "embree-fast");
+  EXPECT_EQ(fast->kind(), AccelKind::embree);
+  EXPECT_EQ(static_cast<const EmbreeAccelerator&>(*fast).mode(), EmbreeMode::fast);
+  EXPECT_GE(fast->bytes(), 48u * tris.size());
   std::printf("[ embree   ] 1000-triangle soup: %llu bytes, build %.2f ms\n",
               static_cast<unsigned long long>(embree.bytes()), embree.build_s() * 1e3);
 }

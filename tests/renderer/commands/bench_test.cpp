@@ -24,7 +24,7 @@ TEST(Bench, WritesEveryFigureForEveryAcceleratorClassAndThreadCount) {
   EXPECT_EQ(j.at("n"), 3000);
   EXPECT_EQ(j.at("repeat"), 2);
   EXPECT_NE(j.at("scene").get<std::string>().find("cornell-box"), std::string::npos);
-  for (const char* accel : {"naive", "grid", "grid2", "embree"}) {  // the default list
+  for (const char* accel : {"naive", "grid", "grid2", "embree", "embree-fast"}) {  // the default list
     EXPECT_GT(j.at("accels").at(accel).at("build_s").get<double>(), 0.0) << accel;  // a measured time
     EXPECT_LT(j.at("accels").at(accel).at("build_s").get<double>(), 10.0) << accel;
     EXPECT_TRUE(j.at("accels").at(accel).contains("bytes")) << accel;
@@ -32,23 +32,31 @@ TEST(Bench, WritesEveryFigureForEveryAcceleratorClassAndThreadCount) {
   EXPECT_GT(j.at("accels").at("grid").at("bytes").get<double>(), 0.0);
   EXPECT_GT(j.at("accels").at("grid2").at("bytes").get<double>(), 0.0);
   EXPECT_GT(j.at("accels").at("embree").at("bytes").get<double>(), 0.0);
-  // 4 accelerators x 4 ray classes x 2 thread counts.
-  ASSERT_EQ(j.at("results").size(), 32u);
-  std::map<std::string, double> embree_median;  // by "rays threads"
-  for (const auto& row : j.at("results"))
-    if (row.at("accel") == "embree")
-      embree_median[row.at("rays").get<std::string>() + " " + row.at("threads").dump()] = row.at("mrays_per_s_median");
+  EXPECT_GT(j.at("accels").at("embree-fast").at("bytes").get<double>(), 0.0);
+  // 5 accelerators x 4 ray classes x 2 thread counts.
+  ASSERT_EQ(j.at("results").size(), 40u);
+  std::map<std::string, double> embree_median, fast_median;  // by "rays threads"
+  for (const auto& row : j.at("results")) {
+    const std::string key = row.at("rays").get<std::string>() + " " + row.at("threads").dump();
+    if (row.at("accel") == "embree") embree_median[key] = row.at("mrays_per_s_median");
+    if (row.at("accel") == "embree-fast") fast_median[key] = row.at("mrays_per_s_median");
+  }
   ASSERT_EQ(embree_median.size(), 8u);
+  ASSERT_EQ(fast_median.size(), 8u);
   for (const auto& row : j.at("results")) {
     for (const char* key : {"accel", "rays", "threads", "mrays_per_s_median", "mrays_per_s_min", "mrays_per_s_max",
-                            "ratio_to_embree"})
+                            "ratio_to_embree", "ratio_to_embree_fast"})
       ASSERT_TRUE(row.contains(key)) << key;
     const double median = row.at("mrays_per_s_median");
     EXPECT_GT(median, 0.0);
-    // The ratio is this row's median over Embree's on the same rays and threads.
-    const double embree = embree_median.at(row.at("rays").get<std::string>() + " " + row.at("threads").dump());
+    // The ratios are this row's median over each Embree's on the same rays and threads.
+    const std::string key = row.at("rays").get<std::string>() + " " + row.at("threads").dump();
+    const double embree = embree_median.at(key), fast = fast_median.at(key);
     EXPECT_NEAR(row.at("ratio_to_embree").get<double>(), median / embree, 1e-12 * median / embree) << row.dump();
+    EXPECT_NEAR(row.at("ratio_to_embree_fast").get<double>(), median / fast, 1e-12 * median / fast) << row.dump();
   }
+  // The table names both peers.
+  EXPECT_NE(r.std_out.find("vs embree-fast"), std::string::npos) << r.std_out;
   EXPECT_TRUE(r.std_err.empty()) << r.std_err;  // the table goes to stdout
 }
 
@@ -86,7 +94,10 @@ TEST(Bench, NaiveIsSkippedWithANoteWhenItWouldTakeTooLong) {
   ASSERT_EQ(r2.exit_code, 0) << r2.std_err;
   // The parsed report outlives the loop (a range over a temporary's member dangles: ASan found it).
   const nlohmann::json grid_only = nlohmann::json::parse(test::read_file(tmp / "c.json"));
-  for (const auto& row : grid_only.at("results")) EXPECT_TRUE(row.at("ratio_to_embree").is_null());
+  for (const auto& row : grid_only.at("results")) {
+    EXPECT_TRUE(row.at("ratio_to_embree").is_null());
+    EXPECT_TRUE(row.at("ratio_to_embree_fast").is_null());
+  }
 }
 
 TEST(Bench, BadOptionsAreRefused) {
