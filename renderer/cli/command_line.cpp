@@ -24,10 +24,18 @@ void add_render_flags(CLI::App& render, RenderOptions& o, bool converge) {
     add_accel_flag(render, o.accel, "accelerator");
   else
     add_accel_flag(render, o.accel,
-                   "accelerator; auto: the exact one the cost model predicts fastest for the frame (the grid when "
-                   "the render counts cells)",
+                   "accelerator (default grid2, the fastest exact one; grid, the paper's uniform grid, when "
+                   "--grid-res or --grid-density is given); auto: the exact one the cost model predicts fastest "
+                   "for the frame (the grid when the render counts cells)",
                    true);
   add_grid_flags(render, o.build, !converge);
+  // The default accelerator is grid2, the fastest exact one measured (the
+  // README's table); --grid-res and --grid-density set the uniform grid's
+  // cells, so given without --accel they mean the uniform grid, as before.
+  render.parse_complete_callback([&render, &o] {
+    if (render.count("--accel") == 0 && (render.count("--grid-res") > 0 || render.count("--grid-density") > 0))
+      o.accel = "grid";
+  });
   if (!converge)
     render.add_option("--spp", o.spp, "samples per pixel (with a budget: the most, if given)")
         ->check(CLI::Range(1, 1 << 20))

@@ -13,7 +13,7 @@ namespace kappa {
 
 struct RenderOptions {
   std::string scene;            ///< scene.json or .obj
-  std::string accel = "grid";   ///< accelerator name (accel/accel.h)
+  std::string accel = "grid2";  ///< accelerator name (accel/accel.h); grid when only grid flags are given
   AccelOptions build;           ///< --grid-res, --grid-density, --grid-max-bytes
   int spp = 64;                 ///< samples per pixel (with a budget: the cap, when given)
   bool spp_given = false;       ///< --spp was on the command line

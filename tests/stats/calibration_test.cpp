@@ -186,7 +186,7 @@ TEST(Calibration, CalibrateThenRenderReportsTheCost) {
             0.0);
   EXPECT_EQ(calibration.at("grid2_builds").size(), calibration.at("builds").size());
   const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
-  const auto r = test::run_kappa({"render", scene, "--spp", "2", "--width", "32", "--height", "32", "--out",
+  const auto r = test::run_kappa({"render", scene, "--accel", "grid", "--spp", "2", "--width", "32", "--height", "32", "--out",
                                   (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(), "--calibration", cal});
   // grid2's render is predicted by its own constants.
   const auto r2 = test::run_kappa({"render", scene, "--spp", "2", "--width", "32", "--height", "32", "--accel", "grid2",
@@ -238,7 +238,7 @@ TEST(Calibration, ABadCalibrationFileIsRefusedBeforeRendering) {
 TEST(Calibration, RefusedPerCellStatisticsSkipTheCellMapButKeepTheImage) {
   test::TempDir tmp;
   const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
-  const auto r = test::run_kappa({"render", scene, "--spp", "1", "--width", "8", "--height", "8", "--out",
+  const auto r = test::run_kappa({"render", scene, "--accel", "grid", "--spp", "1", "--width", "8", "--height", "8", "--out",
                                   (tmp / "x.exr").string(), "--cell-map", (tmp / "m.exr").string(), "--grid-max-bytes",
                                   "9000", "--quiet"});
   EXPECT_EQ(r.exit_code, 0) << r.std_err;

@@ -16,7 +16,7 @@ line=$(grep '^render.time_s ' <<<"$out") || fail "no render.time_s row: $out"
 ratio=$(awk '{print $NF}' <<<"$line")
 awk -v r="$ratio" 'BEGIN { exit !(r > 0 && r < 1) }' || fail "64 spp against 1 spp read as speed ratio $ratio"
 # The build is timed apart from the render, and the same in both sides' settings.
-grep -q '^grid.build_s ' <<<"$out" || fail "no grid.build_s row: $out"
+grep -q '^grid2.build_s ' <<<"$out" || fail "no grid2.build_s row (the default accelerator's): $out"
 
 out=$("$ab" -n 1 "$kappa" "$kappa" -- bench "$scene" --accel grid,naive --rays camera,shadow --threads 1 --repeat 1 --n 256)
 for row in "grid camera 1t Mrays/s" "grid shadow 1t Mrays/s" "naive camera 1t Mrays/s"; do

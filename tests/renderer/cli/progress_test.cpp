@@ -70,8 +70,8 @@ bool contains(const std::string& text, const std::string& part) { return text.fi
 
 TEST(Progress, ATerminalSeesEveryPhaseOfLoadingBuildingAndRendering) {
   test::TempDir dir;
-  const TerminalRun run = run_on_terminal({"render", cornell(), "--spp", "1", "--width", "32", "--height", "32",
-                                           "--out", (dir / "c.exr").string()});
+  const TerminalRun run = run_on_terminal({"render", cornell(), "--accel", "grid", "--spp", "1", "--width", "32",
+                                           "--height", "32", "--out", (dir / "c.exr").string()});
   ASSERT_EQ(run.exit_code, 0) << run.terminal;
   for (const char* phase : {"reading cornell_box.obj", "checking cornell_box.obj", "parsing cornell_box.obj",
                             ": counting cells", ": filling cells", "rendering ["})

@@ -129,9 +129,9 @@ TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
     "naive": {"constants": {"T0_ns": 30, "Th_ns": 2, "Th_occluded_ns": 1}},
     "build": )" + build + R"(, "extended": )" + extended_constants(11, 1) + R"(,
     "grid2": {"traversal": )" + extended_constants(31, 5) + R"(, "build": )" + build + "}}");
-  const auto r = test::run_kappa({"render", cornell(), "--spp", "2", "--width", "24", "--height", "24", "--out",
-                                  (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(), "--calibration",
-                                  (tmp / "cal.json").string()});
+  const auto r = test::run_kappa({"render", cornell(), "--accel", "grid", "--spp", "2", "--width", "24", "--height",
+                                  "24", "--out", (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(),
+                                  "--calibration", (tmp / "cal.json").string()});
   ASSERT_EQ(r.exit_code, 0) << r.std_err;
   const auto j = nlohmann::json::parse(test::read_file(tmp / "x.json"));
   EXPECT_EQ(j.at("render").at("width"), 24);
@@ -247,7 +247,7 @@ double channel_sum(const std::filesystem::path& file, const std::string& channel
 
 TEST(CostPictures, CostAovsAndCellMapAddUpToTheReport) {
   test::TempDir tmp;
-  const auto r = test::run_kappa({"render", cornell(), "--spp", "2", "--width", "24", "--height", "24", "--aov", "cost",
+  const auto r = test::run_kappa({"render", cornell(), "--accel", "grid", "--spp", "2", "--width", "24", "--height", "24", "--aov", "cost",
                                   "--out", (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(),
                                   "--cell-map", (tmp / "map.exr").string(), "--cell-map-axis", "z"});
   ASSERT_EQ(r.exit_code, 0) << r.std_err;
@@ -261,7 +261,7 @@ TEST(CostPictures, CostAovsAndCellMapAddUpToTheReport) {
   EXPECT_NEAR(channel_sum(tmp / "map.exr", "p"), all.at("p_tot").get<double>(), 1e-3 * all.at("p_tot").get<double>());
   EXPECT_NEAR(channel_sum(tmp / "map.exr", "theta"), j.at("grid").at("theta_tot").get<double>(), 1e-3);
   // A PNG map for people.
-  const auto png = test::run_kappa({"render", cornell(), "--spp", "1", "--width", "8", "--height", "8", "--out",
+  const auto png = test::run_kappa({"render", cornell(), "--accel", "grid", "--spp", "1", "--width", "8", "--height", "8", "--out",
                                     (tmp / "y.exr").string(), "--cell-map", (tmp / "map.png").string()});
   ASSERT_EQ(png.exit_code, 0) << png.std_err;
   // The same cells as the EXR map's pixels, sqrt(p_i / max p) in red and

@@ -260,7 +260,7 @@ TEST(Extremes, AMillionTriangleSoupLoadsBuildsAndRendersWithDefaults) {
     ASSERT_EQ(std::fclose(f), 0);
   }
   const auto report = dir / "soup.json";
-  const auto r = test::run_kappa({"render", obj.string(), "--width", "32", "--height", "32", "--spp", "1", "--out",
+  const auto r = test::run_kappa({"render", "--accel", "grid", obj.string(), "--width", "32", "--height", "32", "--spp", "1", "--out",
                                   (dir / "soup.exr").string(), "--report", report.string()});
   ASSERT_EQ(r.exit_code, 0) << r.std_err;
   const auto j = nlohmann::json::parse(test::read_file(report));

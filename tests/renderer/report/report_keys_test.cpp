@@ -106,7 +106,7 @@ TEST(ReportKeys, EveryDocumentedKeyIsInTheReports) {
   // one (the built-in constants, written as calibrate writes them; running
   // calibrate here took 2.5 of the ASan suite's 15 minutes).
   test::write_file(tmp / "cal.json", to_json(builtin_calibration()).dump(2));
-  const nlohmann::json render = report_of({"render", scene, "--spp", "2", "--width", "32", "--height", "32", "--out",
+  const nlohmann::json render = report_of({"render", scene, "--accel", "grid", "--spp", "2", "--width", "32", "--height", "32", "--out",
                                            (tmp / "x.exr").string(), "--calibration", (tmp / "cal.json").string()});
   ASSERT_TRUE(render.at("cost").is_object());
   // A budgeted render: the settings of its budgets; its grid chosen by the model: grid_choice.
