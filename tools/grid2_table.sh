@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# The grid2 issue's table: per shared scene, one `kappa bench` run with grid,
-# grid2 and Embree taking turns on the same camera, bounce and shadow rays
-# (1 thread, REPEAT repeats, the median of each), printing grid / Embree,
-# grid2 / Embree and grid2 / grid per class (same-run ratios) and each
-# structure's build time and bytes, with `uptime` before and after.
+# The accelerators' table (docs/accelerators.md): per shared scene, one
+# `kappa bench` run with grid, grid2 and both Embrees taking turns on the same
+# camera, bounce and shadow rays (1 thread, REPEAT repeats, the median of
+# each), printing grid / Embree, grid2 / Embree, grid2 / embree-fast and
+# grid2 / grid per class (same-run ratios) and each structure's build time
+# and bytes, with `uptime` before and after.
 #
 #   tools/grid2_table.sh [SCENE.json ...]     (default: every ../shared/scenes/*/scene*.json)
 #
@@ -24,10 +25,10 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 echo "uptime before: $(uptime)"
 echo
-echo "| scene | grid ÷ Embree (cam, bnc, shd) | grid2 ÷ Embree (cam, bnc, shd) | grid2 ÷ grid (cam, bnc, shd) | build s grid / grid2 | MB grid / grid2 |"
-echo "|---|---|---|---|---|---|"
+echo "| scene | grid ÷ Embree (cam, bnc, shd) | grid2 ÷ Embree (cam, bnc, shd) | grid2 ÷ embree-fast (cam, bnc, shd) | grid2 ÷ grid (cam, bnc, shd) | build s grid / grid2 / Embree / fast | MB grid / grid2 / Embree / fast |"
+echo "|---|---|---|---|---|---|---|"
 for scene in "${scenes[@]}"; do
-  "$kappa" bench "$scene" --accel grid,grid2,embree --rays camera,bounce,shadow --threads "$threads" \
+  "$kappa" bench "$scene" --accel grid,grid2,embree,embree-fast --rays camera,bounce,shadow --threads "$threads" \
     --repeat "$repeat" --n "$n" --json "$tmp/b.json" > /dev/null 2> "$tmp/err" || { cat "$tmp/err" >&2; exit 1; }
   /usr/bin/python3 - "$tmp/b.json" "$scene" "$threads" <<'PY'
 import json, sys
@@ -39,9 +40,10 @@ def ratios(a, b):
     return ", ".join("%.3f" % (rows[(a, c)]["mrays_per_s_median"] / rows[(b, c)]["mrays_per_s_median"]) for c in classes)
 acc = j["accels"]
 name = sys.argv[2].split("/scenes/")[-1].replace(".json", "")
-print("| %s | %s | %s | %s | %.3f / %.3f | %.1f / %.1f |" % (
-    name, ratios("grid", "embree"), ratios("grid2", "embree"), ratios("grid2", "grid"),
-    acc["grid"]["build_s"], acc["grid2"]["build_s"], acc["grid"]["bytes"] / 2**20, acc["grid2"]["bytes"] / 2**20))
+names = ["grid", "grid2", "embree", "embree-fast"]
+print("| %s | %s | %s | %s | %s | %s | %s |" % (
+    name, ratios("grid", "embree"), ratios("grid2", "embree"), ratios("grid2", "embree-fast"), ratios("grid2", "grid"),
+    " / ".join("%.3f" % acc[a]["build_s"] for a in names), " / ".join("%.1f" % (acc[a]["bytes"] / 2**20) for a in names)))
 PY
 done
 echo
