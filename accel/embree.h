@@ -2,8 +2,8 @@
 //   embree       robust mode (RTC_SCENE_FLAG_ROBUST): its watertight Pluecker
 //                test on triangles stored with their vertices (Triangle4v),
 //                in an SAH BVH *without* spatial splits: Embree 3.13 builds
-//                robust scenes with its plain SAH builder whatever the
-//                quality asked (scene.cpp, createTriangleAccel);
+//                robust scenes with its plain SAH builder at medium and high
+//                quality alike (scene.cpp, createTriangleAccel);
 //   embree-fast  Embree as a user gets it without the robust flag: the
 //                Moeller test, not watertight (a ray may slip between two
 //                triangles that share an edge), on Triangle4 leaves in an SAH

@@ -139,12 +139,14 @@ for entry in "${scene_list[@]}"; do
   log "sweep $name"
   step sweep "$name" "$kappa" sweep "$path" "${sweep_args[@]}" --json "$work/sweep/$name.json" -q
   # kappa per class at --grid-res auto (the grid kappa is reported for); every class's totals are exact.
+  # Every render here walks every shadow ray (--occluder-cache off): the
+  # paper's rays, and the rays the cost model predicts.
   log "kappa per class: $name"
-  step kappa "$name" "$kappa" render "$path" --accel grid --grid-res auto --stats on "${kappa_args[@]}" \
+  step kappa "$name" "$kappa" render "$path" --accel grid --occluder-cache off --grid-res auto --stats on "${kappa_args[@]}" \
     --report "$work/kappa/$name.json" --out "$work/img/$name.exr" -q
   # --grid-res model's choice for the same frame: which resolution it would give a user.
   log "model's choice: $name"
-  step model "$name" "$kappa" render "$path" --accel grid --grid-res model --stats off "${model_args[@]}" \
+  step model "$name" "$kappa" render "$path" --accel grid --occluder-cache off --grid-res model --stats off "${model_args[@]}" \
     --report "$work/model/$name.json" --out "$work/img/$name-model.exr" -q
 done
 
@@ -174,11 +176,11 @@ for family in "${families[@]}"; do
     mkdir -p "$res_dir"
     for setting in auto model; do
       # Timed: statistics off, one thread, so that times compare across settings and N.
-      step "scaling-$setting" "$family-$n-time" "$kappa" render "$dir/scene.json" --accel grid --grid-res "$setting" \
+      step "scaling-$setting" "$family-$n-time" "$kappa" render "$dir/scene.json" --accel grid --occluder-cache off --grid-res "$setting" \
         --stats off --threads 1 "${scaling_args[@]}" --report "$res_dir/$setting-time.json" --out "$work/img/x.exr" -q
       # Counted: statistics on, at the very resolution the timed run built.
       res="$(res_of "$res_dir/$setting-time.json")"
-      step "scaling-$setting" "$family-$n-count" "$kappa" render "$dir/scene.json" --accel grid --grid-res "$res" \
+      step "scaling-$setting" "$family-$n-count" "$kappa" render "$dir/scene.json" --accel grid --occluder-cache off --grid-res "$res" \
         --stats on "${scaling_args[@]}" --grid-max-bytes "$(count_limit "$res_dir/$setting-time.json")" \
         --report "$res_dir/$setting-count.json" --out "$work/img/x.exr" -q
     done

@@ -29,8 +29,8 @@ void add_render_flags(CLI::App& render, RenderOptions& o, bool converge) {
                    "for the frame (the grid when the render counts cells)",
                    true);
   add_grid_flags(render, o.build, !converge);
-  // The default accelerator is grid2, the fastest exact one measured (the
-  // README's table); --grid-res and --grid-density set the uniform grid's
+  // The default accelerator is grid2, the fastest exact one on whole frames
+  // (the README gives the figures); --grid-res and --grid-density set the uniform grid's
   // cells, so given without --accel they mean the uniform grid, as before.
   render.parse_complete_callback([&render, &o] {
     if (render.count("--accel") == 0 && (render.count("--grid-res") > 0 || render.count("--grid-density") > 0))
@@ -310,6 +310,9 @@ RenderOptions vary_render_option(const RenderOptions& base, const std::string& k
     throw InputError("--vary " + key + "=" + value + ": " + e.what() +
                      " (keys are render's options that kappa converge takes)");
   }
+  // This parse saw no --accel, so the rule that grid flags alone mean the
+  // uniform grid must not replace the accelerator the base run has.
+  if (key != "accel") o.accel = base.accel;
   return o;
 }
 

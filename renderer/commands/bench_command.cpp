@@ -125,7 +125,7 @@ int run_bench(const BenchOptions& options) {
   for (const auto& rows : per_accel) results.insert(results.end(), rows.begin(), rows.end());
 
   // The peers: robust Embree (watertight, as exact as Embree gets) and
-  // Embree as a user gets it by default (accel/embree.h).
+  // Embree without the robust flag at high build quality (accel/embree.h).
   auto peer_rate = [&](const char* peer, const Result& r) -> double {
     for (const Result& e : results)
       if (e.accel == peer && e.rays == r.rays && e.threads == r.threads) return e.median;

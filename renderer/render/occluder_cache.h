@@ -16,7 +16,6 @@
 // pay a test for nothing.
 #pragma once
 
-#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <cstdint>
@@ -55,8 +54,12 @@ inline LightKey light_key(std::size_t light, const Vec3f& d) {
   if (ax >= ay && ax >= az) face = d.x < 0, major = ax, u = d.y, v = d.z;
   else if (ay >= az) face = 2 + (d.y < 0), major = ay, u = d.x, v = d.z;
   else face = 4 + (d.z < 0), major = az, u = d.x, v = d.y;
-  // u / major and v / major lie in [-1, 1] (NaN and 0 / 0 fall in cell 0).
-  const auto cell = [&](float w) { return std::clamp(int((w / major + 1.0f) * 2.0f), 0, 3); };
+  // u / major and v / major lie in [-1, 1]; compared in float, so that a
+  // NaN (a zero or NaN direction) falls in cell 0 without converting it.
+  const auto cell = [&](float w) {
+    const float s = (w / major + 1.0f) * 2.0f;
+    return s >= 3.0f ? 3 : s >= 2.0f ? 2 : s >= 1.0f ? 1 : 0;
+  };
   const std::uint64_t part = std::uint64_t(face * 16 + cell(u) * 4 + cell(v)) + 1;
   return LightKey(light) | part << 32;
 }

@@ -17,15 +17,9 @@ namespace {
 /// sees what it would from the frame's queries (a shadow ray is occluded
 /// exactly when it has a closest hit within its range).
 struct RecordingQueries {
-  RecordingQueries(const Accelerator& a, std::vector<PilotSegment>& o, std::span<const Triangle> t, bool cache)
-      : accel(a), out(o), triangles(t), occluder_cache(cache) {}
-
   const Accelerator& accel;
   std::vector<PilotSegment>& out;
-  std::span<const Triangle> triangles;
-  bool occluder_cache;
   std::uint64_t rays = 0;
-  OccluderCache cache;
 
   QueryWork work() const { return {}; }
   void begin_path(std::uint64_t /*pixel*/, std::uint64_t /*sample*/) {}
@@ -38,22 +32,12 @@ struct RecordingQueries {
   std::optional<Hit> closest_by_lobe(const Ray& r, int depth, bsdf::Lobe /*lobe*/, const F& filter = {}) {
     return closest(r, depth, filter);
   }
-  /// A shadow ray, with the frame's occluder cache played out: one that
-  /// the cache would answer is no walk of the frame's, so none is recorded.
-  /// The cache remembers the closest occluder here, where the frame's walk
-  /// remembers the first one it meets, so the two caches' hits differ a little.
+  /// Every shadow ray is recorded, also one the frame's occluder cache would
+  /// answer: naive walks them all, and for the grids the prediction then
+  /// counts a walk where the frame may make one triangle test.
   template <HitFilter F = NoHitFilter>
-  bool shadow(const Ray& r, LightKey light, const F& filter = {}) {
-    if (occluder_cache) {
-      const TriangleId last = cache.occluder(light);
-      if (last != kNoTriangle && occludes(triangles, last, r, filter)) {
-        ++rays;
-        return true;
-      }
-    }
-    const std::optional<Hit> hit = record(r, kShadow, filter);
-    if (occluder_cache) cache.remember(light, hit ? hit->triangle : kNoTriangle);
-    return hit.has_value();
+  bool shadow(const Ray& r, LightKey /*light*/, const F& filter = {}) {
+    return record(r, kShadow, filter).has_value();
   }
 
  private:
@@ -88,9 +72,7 @@ Pilot run_pilot(const Scene& scene, int width, int height, int pixels, const Acc
   one.test_nonfinite = nullptr;
   Film film(pilot.width, pilot.height, AovSelection{});
   tbb::enumerable_thread_specific<std::vector<PilotSegment>> per_thread;
-  render_tiles(scene, one, film, {}, [&] {
-    return RecordingQueries{accel, per_thread.local(), scene.triangles, settings.occluder_cache};
-  });
+  render_tiles(scene, one, film, {}, [&] { return RecordingQueries{accel, per_thread.local()}; });
   std::size_t total = 0;
   for (const auto& v : per_thread) total += v.size();
   pilot.segments.reserve(total);

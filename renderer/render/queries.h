@@ -237,12 +237,15 @@ class CountingQueries {
 
   std::uint64_t rays = 0;
 
+  /// The cells and triangle tests so far, the occluder cache's tests
+  /// included (the cost AOVs: every test a pixel's rays made).
   QueryWork work() const {
     QueryWork w;
     for (const CellCounters& c : m_counters.classes) {
       w.cells += c.totals.cells;
       w.tests += c.totals.tests;
     }
+    w.tests += m_counters.occluder_cache_tests;
     return w;
   }
 

@@ -255,7 +255,7 @@ TEST(Embree, FullBunnyFromSharedScenesAgreesWithNaive) {
   expect_agreement("bunny", tris, 800, 300);
 }
 
-// Embree as users get it by default (no robust flag; spatial splits): the
+// Embree without the robust flag, at high build quality (spatial splits): the
 // same agreement with naive on random rays, to rounding, and only genuine
 // ties and grazes at vertices and edges (its Moeller test may let a ray
 // through an edge, which counts as a graze of naive's hit).
