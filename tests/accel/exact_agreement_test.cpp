@@ -5,7 +5,8 @@
 // through shared mesh vertices; each with the ray families of agreement.h
 // (axis-parallel rays, rays in cell planes, along cell edges, through cell
 // vertices). One suite, instantiated for each exact accelerator and for
-// settings that push its structure to an extreme.
+// settings that push its structure to an extreme. The grids' any-hit walk is
+// also asked through the occluder cache, as a render's shadow rays ask it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,8 +16,11 @@
 
 #include "accel/grid.h"
 #include "accel/grid2.h"
+#include "accel/grid2_traverse.h"
+#include "accel/grid_traverse.h"
 #include "accel/naive.h"
 #include "agreement.h"
+#include "renderer/render/occluder_cache.h"
 #include "test_util.h"
 
 namespace kappa {
@@ -205,6 +209,76 @@ TEST_P(ExactAgreement, FarOriginsEnterTheRightCell) {
       rays.push_back(Ray{{a, b, far}, {0.01f, -0.02f, -1}});
     }
   expect_agreement(tris, *accel, rays);
+}
+
+/// A shadow query through the occluder cache (renderer/render/queries.h's
+/// PlainQueries::shadow): the remembered triangle tested first, else the
+/// walk, whose occluder is remembered.
+template <class Walker>
+bool shadow_through_cache(const Walker& accel, OccluderCache& cache, LightKey key, const Ray& r, std::size_t& hits) {
+  const TriangleId last = cache.occluder(key);
+  if (last != kNoTriangle && occludes(accel.triangles(), last, r, NoHitFilter{})) {
+    ++hits;
+    return true;
+  }
+  NoRecorder none;
+  const TriangleId id = accel.occluder_of(r, none);
+  cache.remember(key, id);
+  return id != kNoTriangle;
+}
+
+TEST_P(ExactAgreement, AnyHitThroughTheOccluderCacheIsNaives) {
+  for (const char* scene : {"soup", "bunny"}) {
+    SCOPED_TRACE(scene);
+    const auto tris = std::string(scene) == "soup" ? test::random_soup(2000, 17, 0.2f)
+                                                   : test::load_mesh(test::assets_dir() / "bunny-lowres" / "bunny_lowres.obj");
+    const auto accel = make(tris);
+    const auto* grid = dynamic_cast<const UniformGrid*>(accel.get());
+    const auto* grid2 = dynamic_cast<const NestedGrid*>(accel.get());
+    if (!grid && !grid2) GTEST_SKIP() << GetParam().name << " has no occluder walk (the cache is the grids')";
+    const NaiveAccelerator naive(tris);
+    OccluderCache cache;
+    std::size_t hits = 0, occluded = 0, mismatches = 0, k = 0;
+    // Shadow rays as a tile makes them: from a raster of points below the
+    // scene, neighbours in turn, to a light inside it and one above it
+    // (segments: tmax 1), taking turns under one key, so that an occluder
+    // found toward the upper light is often tested beyond the inner one's
+    // end; then the ray families of agreement.h (every extreme), three keys
+    // in turn.
+    Vec3f lo = tris[0].v0, hi = tris[0].v0;
+    for (const Triangle& t : tris)
+      for (const Vec3f& v : {t.v0, t.v1, t.v2}) {
+        lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+        hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+      }
+    const Vec3f size = hi - lo;
+    const Vec3f lights[2] = {lo + Vec3f{0.3f * size.x, 0.55f * size.y, 0.5f * size.z},  // inside: triangles lie beyond it
+                             lo + Vec3f{0.7f * size.x, 2.0f * size.y, 0.4f * size.z}};
+    test::Rays rays;
+    const int n = test::scaled(60, 20);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (const Vec3f& light : lights) {
+          const Vec3f o = lo + Vec3f{size.x * (i + 0.5f) / n, -0.1f * size.y, size.z * (j + 0.5f) / n};
+          rays.push_back(Ray{o, light - o, 1e-4f, 1.0f});
+        }
+    const std::size_t shadow_rays = rays.size();
+    for (const Ray& r : ray_families(tris, *accel, std::size_t(test::scaled(300, 40)), 5)) rays.push_back(r);
+    for (const Ray& r : rays) {
+      const LightKey key = k < shadow_rays ? light_key(0) : light_key(k % 3);
+      ++k;
+      const bool cached = grid ? shadow_through_cache(*grid, cache, key, r, hits)
+                               : shadow_through_cache(*grid2, cache, key, r, hits);
+      const bool expected = naive.any_hit(r);
+      occluded += expected;
+      if (cached != expected && ++mismatches <= 3)
+        ADD_FAILURE() << "ray o=(" << r.o.x << "," << r.o.y << "," << r.o.z << ") d=(" << r.d.x << "," << r.d.y << ","
+                      << r.d.z << ") tmin=" << r.tmin << " tmax=" << r.tmax << ": naive " << expected;
+    }
+    EXPECT_EQ(mismatches, 0u);
+    EXPECT_GT(occluded, rays.size() / 10) << "too few occluded rays to test the cache";
+    EXPECT_GT(hits, shadow_rays / 40) << "the cache answered too few rays to test it";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Exact, ExactAgreement, testing::ValuesIn(exact_cases()),

@@ -2,12 +2,15 @@
 // with one filter return bitwise the same closest hit and occlusion, and that
 // answer is naive's over the triangles the filter refuses taken out of the
 // scene (made degenerate, so ids stay). Grid2's walk without a recorder tests
-// four triangles at a time, with one the scalar loop: both are checked.
+// four triangles at a time, with one the scalar loop: both are checked, and
+// both ask the filter exactly what a scalar loop over the leaves the walk
+// visits asks, in the same order.
 #include <gtest/gtest.h>
 
 #include <bit>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "accel/grid.h"
@@ -45,6 +48,27 @@ struct RefuseHalf {
 
 /// A recorder that records nothing but is not NoRecorder: grid2's scalar loop.
 struct AnyRecorder : NoRecorder {};
+
+/// The leaves a walk visits, in order (a recorder: grid2's scalar loop).
+struct LeafRecorder : NoRecorder {
+  std::vector<std::uint64_t> leaves;
+  template <class BoxFn>
+  void cell(std::uint64_t leaf, int, BoxFn&&) {
+    leaves.push_back(leaf);
+  }
+};
+
+/// Every candidate the filter is asked about, in order (id and t's bits);
+/// refuses the ids in `refused`.
+struct CallLog {
+  static constexpr bool active = true;
+  const std::vector<bool>* refused;
+  mutable std::vector<std::pair<TriangleId, std::uint32_t>> calls;
+  bool accepts(const Hit& h) const {
+    calls.emplace_back(h.triangle, std::bit_cast<std::uint32_t>(h.t));
+    return !(*refused)[h.triangle];
+  }
+};
 
 bool same(const std::optional<Hit>& a, const std::optional<Hit>& b) {
   if (a.has_value() != b.has_value()) return false;
@@ -104,6 +128,62 @@ TEST(HitFilter, EveryExactAcceleratorReturnsNaivesHitWithTheSameFilter) {
     expect_all_agree(tris, RefuseHalf{}, nullptr, changed_half);
     EXPECT_GT(changed_half, 50u);
   }
+}
+
+/// What a scalar loop over `leaves` (in the walk's order) asks the filter:
+/// each leaf's list in order, a mailbox like the walk's, stopping where an
+/// any-hit walk stops.
+template <GridWalk Mode>
+std::vector<std::pair<TriangleId, std::uint32_t>> scalar_calls(const std::vector<Triangle>& tris, const NestedGrid& grid2,
+                                                               const Ray& r, const std::vector<std::uint64_t>& leaves,
+                                                               const std::vector<bool>& refused) {
+  const CallLog log{&refused, {}};
+  const PreparedRay prepared(r);
+  detail::Mailbox mailbox;
+  Hit best;
+  best.t = r.tmax;
+  for (const std::uint64_t leaf : leaves)
+    for (const TriangleId id : grid2.leaf(leaf)) {
+      if (mailbox.seen(id)) continue;
+      if constexpr (Mode == GridWalk::any) {
+        if (test_any(prepared, tris[id], id, r.tmin, r.tmax, log)) return log.calls;
+      } else {
+        test_closest(prepared, tris[id], id, r.tmin, best, log);
+      }
+    }
+  return log.calls;
+}
+
+TEST(HitFilter, Grid2AsksTheFilterWhatTheScalarLoopAsksFourAtATimeAndWithARecorder) {
+  const std::vector<Triangle> tris = random_soup(3000, 13, 0.3f);
+  std::vector<bool> refused(tris.size());
+  for (std::size_t i = 0; i < tris.size(); i += 3) refused[i] = true;
+  Grid2Options options;
+  options.top_density = 0.05;  // leaves of several triangles: batches of four and their tails
+  options.leaf_density = 0.5;
+  const NestedGrid grid2(tris, options);
+  std::size_t calls = 0, rays = 0, mismatches = 0;
+  for (const Ray& r : ray_families(tris, grid2, 200, 3)) {
+    LeafRecorder closest_leaves, any_leaves;
+    const CallLog closest{&refused, {}}, closest_counted{&refused, {}}, any{&refused, {}}, any_counted{&refused, {}};
+    NoRecorder none;
+    grid2.closest_hit(r, none, closest);
+    grid2.closest_hit(r, closest_leaves, closest_counted);
+    grid2.any_hit(r, none, any);
+    grid2.any_hit(r, any_leaves, any_counted);
+    const auto scalar_closest = scalar_calls<GridWalk::closest>(tris, grid2, r, closest_leaves.leaves, refused);
+    const auto scalar_any = scalar_calls<GridWalk::any>(tris, grid2, r, any_leaves.leaves, refused);
+    const bool agree = closest.calls == scalar_closest && closest_counted.calls == scalar_closest &&
+                       any.calls == scalar_any && any_counted.calls == scalar_any;
+    if (!agree && ++mismatches <= 3)
+      ADD_FAILURE() << "ray o=(" << r.o.x << "," << r.o.y << "," << r.o.z << ") d=(" << r.d.x << "," << r.d.y << ","
+                    << r.d.z << "): the filter was asked " << closest.calls.size() << " / " << any.calls.size()
+                    << " times, the scalar loop " << scalar_closest.size() << " / " << scalar_any.size();
+    calls += scalar_closest.size() + scalar_any.size();
+    ++rays;
+  }
+  EXPECT_EQ(mismatches, 0u);
+  EXPECT_GT(calls, rays);  // most rays asked the filter something
 }
 
 TEST(HitFilter, WithoutAFilterTheWalksAnswerAsBefore) {
