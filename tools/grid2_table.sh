@@ -8,11 +8,20 @@
 #
 #   tools/grid2_table.sh [SCENE.json ...]     (default: every ../shared/scenes/*/scene*.json)
 #
-# Environment: N (rays per class, default 65536), REPEAT (default 5), THREADS (default 1).
+# Environment: N (rays per class, default 65536), REPEAT (default 5), THREADS (default 1),
+# CPU (with THREADS=1, the core every bench runs on; default the last one; "none" to
+# let the kernel choose). Pinned, because the cores of these machines are not alike
+# for memory-bound walks: on 2026-12-06 the uniform grid's bunny camera rays ran
+# 1.75x slower on cpu 0 than on cpu 1 (grid2 1.33x, Embree 1.04x), so a bench that
+# migrated between them mid-run gave grid / Embree 0.098 instead of 0.154.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 kappa="${KAPPA:-build/kappa}"
 n="${N:-65536}" repeat="${REPEAT:-5}" threads="${THREADS:-1}"
+pin=()
+if [ "$threads" = 1 ] && [ "${CPU:-}" != none ] && command -v taskset > /dev/null; then
+  pin=(taskset -c "${CPU:-$(($(nproc) - 1))}")
+fi
 scenes=("$@")
 if [ ${#scenes[@]} -eq 0 ]; then
   for s in ../shared/scenes/*/scene*.json; do
@@ -24,11 +33,12 @@ fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 echo "uptime before: $(uptime)"
+[ ${#pin[@]} -eq 0 ] || echo "pinned: ${pin[*]}"
 echo
 echo "| scene | grid ÷ Embree (cam, bnc, shd) | grid2 ÷ Embree (cam, bnc, shd) | grid2 ÷ embree-fast (cam, bnc, shd) | grid2 ÷ grid (cam, bnc, shd) | build s grid / grid2 / Embree / fast | MB grid / grid2 / Embree / fast |"
 echo "|---|---|---|---|---|---|---|"
 for scene in "${scenes[@]}"; do
-  "$kappa" bench "$scene" --accel grid,grid2,embree,embree-fast --rays camera,bounce,shadow --threads "$threads" \
+  "${pin[@]}" "$kappa" bench "$scene" --accel grid,grid2,embree,embree-fast --rays camera,bounce,shadow --threads "$threads" \
     --repeat "$repeat" --n "$n" --json "$tmp/b.json" > /dev/null 2> "$tmp/err" || { cat "$tmp/err" >&2; exit 1; }
   /usr/bin/python3 - "$tmp/b.json" "$scene" "$threads" <<'PY'
 import json, sys
