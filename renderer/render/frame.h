@@ -14,6 +14,7 @@
 #include "renderer/render/pass_planner.h"
 #include "renderer/render/path_variant.h"
 #include "renderer/render/sampler_kind.h"
+#include "renderer/render/tile_schedule.h"
 #include "stats/per_cell_budget.h"
 #include "stats/render_counters.h"
 
@@ -49,6 +50,9 @@ struct RenderSettings {
   /// auto_cell_sample); per-class totals always count every ray.
   std::uint64_t cell_sample = 0;
   PassControl* passes = nullptr;  ///< a progressive render's budgets, or one pass of spp
+  /// The tiles this process renders (tile_schedule.h), or nullptr for every
+  /// tile. Only a frame of one pass (no `passes`) takes one.
+  TileSchedule* tiles = nullptr;
   /// Test-only: samples for which this returns true read NaN, as a broken
   /// BSDF's would (tests show that such samples are dropped, not averaged).
   bool (*test_nonfinite)(std::uint64_t pixel, std::uint64_t sample) = nullptr;

@@ -14,15 +14,16 @@
 #include <memory>
 #include <vector>
 
+#include "core/check.h"
 #include "core/parallel.h"
+#include "core/thread_limit.h"
 #include "renderer/render/camera.h"
 #include "renderer/render/frame_accumulator.h"
 #include "renderer/render/path_tracer.h"
 #include "renderer/render/samplers.h"
+#include "renderer/render/tile_schedule.h"
 
 namespace kappa {
-
-inline constexpr int kTileSize = 16;
 
 /// The tile loop, for one choice of queries. `make_queries` gives a thread
 /// its Queries object for a tile.
@@ -38,6 +39,8 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
   PassPlanner* const planner = control ? control->planner : nullptr;
   const std::atomic<bool>* const interrupt = control ? control->interrupt : nullptr;
   const bool adaptive = planner && planner->budget().adaptive;
+  TileSchedule* const schedule = settings.tiles;
+  KAPPA_CHECK(!schedule || !control);  // a schedule splits frames of one pass (frame.h)
 
   struct Counters {
     std::uint64_t rays = 0, nonfinite = 0;
@@ -60,7 +63,7 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
   // short keeps its sums as they were.
   const auto run_pass_with = [&]<class Sampler, PathVariant V>(std::uint32_t first, std::uint32_t count) {
     std::atomic<std::size_t> tiles_done{0};
-    kappa::parallel_for(std::size_t(0), tile_count, [&](std::size_t tile) {
+    const auto render_tile = [&](std::size_t tile) {
       if (abandoned.load(std::memory_order_relaxed)) return;
       Counters& local = counters.local();
       auto queries = make_queries();
@@ -116,7 +119,17 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
       local.rays += queries.rays;
       const std::size_t done = tiles_done.fetch_add(1, std::memory_order_relaxed) + 1;
       if (progress) progress(done, tile_count);
+    };
+    if (!schedule) {
+      kappa::parallel_for(std::size_t(0), tile_count, render_tile);
+      return;
+    }
+    // Each render thread takes the schedule's tiles until it has none left.
+    schedule->begin_pass(tile_count);
+    kappa::parallel_for(std::size_t(0), std::size_t(active_threads()), [&](std::size_t) {
+      while (const std::optional<std::size_t> tile = schedule->next_tile()) render_tile(*tile);
     });
+    schedule->end_pass();
   };
   // The sampler and the integrator, chosen once per frame: each pair its own loop.
   const auto run_pass = [&](std::uint32_t first, std::uint32_t count) {

@@ -1,0 +1,31 @@
+// Which of a pass's tiles this process renders. Without a schedule a frame
+// renders every tile; with one, the tiles it hands out (kappa-mpi's ranks
+// share a frame this way, issue 48). A pixel's samples depend only on (seed,
+// pixel, sample index), and a tile's per-tile state (its occluder cache)
+// begins and ends with the tile, so a tile renders the same pixels wherever
+// and with whatever else it runs: what lets a frame be split by tiles and
+// put together bitwise (tests/renderer/render/tile_schedule_test.cpp).
+#pragma once
+
+#include <cstddef>
+#include <optional>
+
+namespace kappa {
+
+/// A frame's tiles are squares of this many pixels a side (the last row and
+/// column cut by the film's edges), numbered row by row.
+inline constexpr int kTileSize = 16;
+
+class TileSchedule {
+ public:
+  virtual ~TileSchedule() = default;
+  /// Before each pass: the frame has `tiles` tiles.
+  virtual void begin_pass(std::size_t tiles) = 0;
+  /// The next tile this process renders in the pass, or nullopt once it has
+  /// none left. Called from every render thread, until each gets nullopt.
+  virtual std::optional<std::size_t> next_tile() = 0;
+  /// After the pass's last tile here (its pixels are in the film).
+  virtual void end_pass() = 0;
+};
+
+}  // namespace kappa
