@@ -48,7 +48,7 @@ void WarningLog::add(const std::string& text) {
     m_entries.push_back({{kind, text, 0}, 0});
     entry = &m_entries.back();
   }
-  if (++entry->kind.count <= kWarningsShownPerKind)
+  if (++entry->kind.count <= kWarningsShownPerKind && m_printing)
     std::fprintf(stderr, "kappa: warning: %s\n", printable_line(text).c_str());
 }
 
@@ -58,7 +58,8 @@ void WarningLog::finish() {
     const std::uint64_t shown = std::min(e.kind.count, kWarningsShownPerKind);
     const std::uint64_t more = e.kind.count - shown - e.summarised;
     if (more == 0) continue;
-    std::fprintf(stderr, "kappa: warning: ... and %llu more like it: %s\n", static_cast<unsigned long long>(more),
+    if (m_printing)
+      std::fprintf(stderr, "kappa: warning: ... and %llu more like it: %s\n", static_cast<unsigned long long>(more),
                  printable_line(e.kind.kind).c_str());
     e.summarised += more;
   }

@@ -7,6 +7,7 @@
 // "b.obj:40: material 'blue' is not defined" are one kind.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <mutex>
 #include <string>
@@ -33,6 +34,9 @@ class WarningLog {
   void finish();
   /// Every kind seen, in the order first seen.
   std::vector<WarningKind> kinds() const;
+  /// Off: warnings are counted, not printed (kappa-mpi's ranks but the
+  /// writer, which prints the same warnings of the same inputs once).
+  void set_printing(bool on) { m_printing = on; }
 
  private:
   struct Entry {
@@ -41,6 +45,7 @@ class WarningLog {
   };
   mutable std::mutex m_mutex;
   std::vector<Entry> m_entries;
+  std::atomic<bool> m_printing{true};
 };
 
 /// The process's log, where every command's warnings go.

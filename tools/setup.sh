@@ -19,6 +19,8 @@ packages=(
   time
   # clang and its runtime (libFuzzer, sanitizers) for tools/fuzz.sh
   clang libclang-rt-14-dev
+  # kappa-mpi: one frame on many ranks (Open MPI 4.1; build/kappa does not link it)
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()

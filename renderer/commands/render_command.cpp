@@ -32,6 +32,7 @@
 #include "renderer/io/output_target.h"
 #include "renderer/render/accel_choice.h"
 #include "renderer/render/frame_accumulator.h"
+#include "renderer/render/frame_split.h"
 #include "renderer/render/integrator.h"
 #include "renderer/render/sampler_kind.h"
 #include "renderer/report/render_record.h"
@@ -131,10 +132,30 @@ std::string traversal_summary(const nlohmann::ordered_json& cost) {
   return text;
 }
 
+/// What a frame shared by several processes cannot do yet (issue 48): one
+/// line, before anything is loaded.
+void refuse_what_a_shared_frame_cannot_do(const RenderOptions& options, const Budget& budget) {
+  const auto refuse = [](const std::string& what) {
+    throw InputError(what + " with more than one rank: not supported yet by kappa-mpi (run it with one rank, or build/kappa)");
+  };
+  if (budget.any()) refuse("--time-budget, --target-relmse and --adaptive");
+  if (options.stats == "on") refuse("--stats on (add --stats off)");
+  if (options.accel == "auto") refuse("--accel auto");
+  if (options.build.grid_res == "model") refuse("--grid-res model");
+}
+
+/// The outputs a render claims before it renders (the writer's only).
+struct ClaimedOutputs {
+  std::unique_ptr<AtomicOutput> image, report, cell_map, preview;
+};
+
 }  // namespace
 
-int run_render(const RenderOptions& options) {
+int run_render(const RenderOptions& options, FrameSplit* split) {
   const Budget budget = budget_of(options);
+  const bool shared_frame = split && split->processes() > 1;
+  if (shared_frame) refuse_what_a_shared_frame_cannot_do(options, budget);
+  const bool writer = !split || split->writer();
   AovSelection aov = parse_aovs(options.aov);
   aov.variance = aov.variance || budget.target_relmse > 0;  // the estimate's inputs, per pixel
   aov.spp = aov.spp || budget.adaptive;
@@ -159,10 +180,11 @@ int run_render(const RenderOptions& options) {
   // --threads limits loading, the accelerator's build and the render alike.
   const ThreadLimit thread_limit(options.threads);
   // Progress lines while loading and building, erased when each is done.
-  const bool show_progress = progress_wanted(options.quiet);
+  const bool show_progress = writer && progress_wanted(options.quiet);
   Warnings warnings;
-  Scene scene =
-      with_progress(show_progress, [&](TaskProgress* progress) { return load_scene(options.scene, warnings, progress); });
+  Scene scene = agreed_step(split, [&] {
+    return with_progress(show_progress, [&](TaskProgress* progress) { return load_scene(options.scene, warnings, progress); });
+  });
   print_warnings(warnings);
   apply_view(scene, options.camera, options.width, options.height);
   if (!scene.punctual_lights.empty() && options.light_sampling == "bsdf")
@@ -179,25 +201,37 @@ int run_render(const RenderOptions& options) {
   std::vector<std::filesystem::path> inputs = scene.inputs;
   inputs.push_back(calibration_path);
   refuse_outputs_over_inputs({out_path, options.report, options.cell_map, options.preview}, inputs);
-  AtomicOutput output(out_path, OutputKind::image);
-  const auto report_out = optional_output(options.report);
-  const auto cell_map_out = optional_output(options.cell_map, OutputKind::image);
-  const auto preview_out = optional_output(options.preview, OutputKind::image);
+  // Claimed by the writer alone; every process waits for its verdict.
+  ClaimedOutputs claimed = agreed_step(split, [&] {
+    ClaimedOutputs c;
+    if (!writer) return c;
+    c.image = std::make_unique<AtomicOutput>(out_path, OutputKind::image);
+    c.report = optional_output(options.report);
+    c.cell_map = optional_output(options.cell_map, OutputKind::image);
+    c.preview = optional_output(options.preview, OutputKind::image);
+    return c;
+  });
+  const auto& report_out = claimed.report;
+  const auto& cell_map_out = claimed.cell_map;
+  const auto& preview_out = claimed.preview;
   // The calibration too is read now: a bad file must not cost a finished render.
   // One left beside the binary by an older Kappa is set aside with a word (a
   // rebuild must not stop every render); one named with --calibration is
   // refused.
-  std::optional<Calibration> calibration;
-  if (options.calibration.empty() && calibration_of_another_format(calibration_path))
-    warning_log().add(calibration_path.string() +
-                      ": a calibration of another format, from another Kappa, is not used: run kappa calibrate again");
-  else
-    calibration = load_calibration(calibration_path);
-  if (!calibration && !options.calibration.empty())
-    throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
-  // Without a file, the constants fitted on the project's machines: the
-  // report's predictions and --grid-res model work on a fresh clone, silently.
-  if (!calibration) calibration = builtin_calibration();
+  std::optional<Calibration> calibration = agreed_step(split, [&] {
+    std::optional<Calibration> c;
+    if (options.calibration.empty() && calibration_of_another_format(calibration_path))
+      warning_log().add(calibration_path.string() +
+                        ": a calibration of another format, from another Kappa, is not used: run kappa calibrate again");
+    else
+      c = load_calibration(calibration_path);
+    if (!c && !options.calibration.empty())
+      throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
+    // Without a file, the constants fitted on the project's machines: the
+    // report's predictions and --grid-res model work on a fresh clone, silently.
+    if (!c) c = builtin_calibration();
+    return c;
+  });
 
   const auto build_start = std::chrono::steady_clock::now();
   AccelRequest request;
@@ -208,9 +242,11 @@ int run_render(const RenderOptions& options) {
   // The frame's paths: its pixels at --spp (a budget's cap, or the default
   // 64 when a budget decides how many).
   request.frame_paths = double(scene.width) * double(scene.height) * double(options.spp);
-  FrameAccelerator frame_accel = with_progress(show_progress, [&](TaskProgress* progress) {
-    const MemoryNeed need("building the accelerator over " + std::to_string(scene.triangles.size()) + " triangles", 0);
-    return build_frame_accelerator(scene, settings, request, *calibration, progress);
+  FrameAccelerator frame_accel = agreed_step(split, [&] {
+    return with_progress(show_progress, [&](TaskProgress* progress) {
+      const MemoryNeed need("building the accelerator over " + std::to_string(scene.triangles.size()) + " triangles", 0);
+      return build_frame_accelerator(scene, settings, request, *calibration, progress);
+    });
   });
   std::unique_ptr<Accelerator> accel = std::move(frame_accel.accel);
   const std::optional<GridChoice>& grid_choice = frame_accel.grid_choice;
@@ -220,7 +256,8 @@ int run_render(const RenderOptions& options) {
 
   const MemoryNeed frame_need("rendering the " + std::to_string(scene.width) + "x" + std::to_string(scene.height) +
                                   " frame", 0);
-  Film film(scene.width, scene.height, aov);
+  // The last step every process agrees on before the tiles go out.
+  Film film = agreed_step(split, [&] { return Film(scene.width, scene.height, aov); });
   ProgressBar bar(show_progress);
   begin_phase(bar.task(), "rendering", 0);
   RenderResult result;
@@ -262,6 +299,7 @@ int run_render(const RenderOptions& options) {
       result.stop_reason = "interrupted";
     }
   } else {
+    settings.tiles = shared_frame ? split : nullptr;
     result = render(scene, *accel, settings, film, [&bar](std::size_t done, std::size_t total) { bar.update(done, total); });
   }
   bar.finish();
@@ -273,6 +311,8 @@ int run_render(const RenderOptions& options) {
     warning_log().add(std::to_string(result.nonfinite_samples) +
                       " samples had non-finite radiance and were dropped from their pixels");
   if (!result.stats_note.empty()) warning_log().add(result.stats_note);
+  if (!writer) return 0;  // the writer has this process's pixels and counts
+  AtomicOutput& output = *claimed.image;
 
   // Every setting that changes the image, from one record, in both the EXR
   // header and the report; then what the run measured.

@@ -5,7 +5,11 @@
 
 namespace kappa {
 
+class FrameSplit;
+
 /// Throws InputError for bad input; returns the process exit code otherwise.
-int run_render(const RenderOptions& options);
+/// With a `split` of more than one process (kappa-mpi), this process renders
+/// the tiles it is given and only the writer writes (frame_split.h).
+int run_render(const RenderOptions& options, FrameSplit* split = nullptr);
 
 }  // namespace kappa

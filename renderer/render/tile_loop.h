@@ -129,7 +129,6 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
     kappa::parallel_for(std::size_t(0), std::size_t(active_threads()), [&](std::size_t) {
       while (const std::optional<std::size_t> tile = schedule->next_tile()) render_tile(*tile);
     });
-    schedule->end_pass();
   };
   // The sampler and the integrator, chosen once per frame: each pair its own loop.
   const auto run_pass = [&](std::uint32_t first, std::uint32_t count) {
@@ -165,6 +164,12 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
     ++result.passes;
     state.spp += count;
     completed = totals();
+    if (schedule) {
+      // The frame's pixels, estimates and counts, from every process that shares it.
+      std::uint64_t counts[2] = {completed.rays, completed.nonfinite};
+      schedule->end_pass(film, tile_estimates, counts);
+      completed = Counters{counts[0], counts[1]};
+    }
     if (acc) {
       // The film of every completed pass, ready to be written if the next
       // is interrupted; then what the planner decides the next pass from.
@@ -185,7 +190,7 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
     result.spp_spread = SppSpread{spp, spp, double(spp)};
   }
 
-  const Counters all = totals();
+  const Counters all = schedule ? completed : totals();
   result.rays = all.rays;
   result.abandoned_rays = all.rays - completed.rays;
   result.nonfinite_samples = completed.nonfinite;

@@ -8,9 +8,13 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
+#include <span>
 
 namespace kappa {
+
+struct Film;
 
 /// A frame's tiles are squares of this many pixels a side (the last row and
 /// column cut by the film's edges), numbered row by row.
@@ -24,8 +28,12 @@ class TileSchedule {
   /// The next tile this process renders in the pass, or nullopt once it has
   /// none left. Called from every render thread, until each gets nullopt.
   virtual std::optional<std::size_t> next_tile() = 0;
-  /// After the pass's last tile here (its pixels are in the film).
-  virtual void end_pass() = 0;
+  /// After the pass's last tile here, whose pixels are in `film` and whose
+  /// relMSE estimates are in `tile_estimates` (by tile), with this process's
+  /// `counts` (rays, non-finite samples): a schedule shared by processes
+  /// brings every tile's pixels and estimates into the writing process's
+  /// film and the counts' sums into its `counts`.
+  virtual void end_pass(Film& film, std::span<double> tile_estimates, std::span<std::uint64_t> counts) = 0;
 };
 
 }  // namespace kappa

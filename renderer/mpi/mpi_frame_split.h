@@ -1,0 +1,54 @@
+// A frame shared by the ranks of an MPI job (issue 48): rank 0 hands out
+// tiles from a thread of its own while its render threads take tiles too,
+// and after the pass gathers every rank's tiles, estimates and counts.
+// kappa-mpi only: build/kappa does not link MPI.
+#pragma once
+
+#include <mpi.h>
+
+#include <atomic>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "renderer/render/frame_split.h"
+
+namespace kappa {
+
+class MpiFrameSplit final : public FrameSplit {
+ public:
+  /// Over `comm` (duplicated: Kappa's messages never meet another library's).
+  explicit MpiFrameSplit(MPI_Comm comm);
+  ~MpiFrameSplit() override;
+
+  int process() const override { return m_rank; }
+  int processes() const override { return m_ranks; }
+  bool all_succeeded(bool succeeded) override;
+  bool writer_succeeded() const override { return m_writer_succeeded; }
+
+  void begin_pass(std::size_t tiles) override;
+  std::optional<std::size_t> next_tile() override;
+  void end_pass(Film& film, std::span<double> tile_estimates, std::span<std::uint64_t> counts) override;
+
+  /// A pass has begun: from here a rank that fails cannot meet the others at
+  /// an agreement, and the job must end (MPI_Abort).
+  bool rendering() const { return m_rendering; }
+  /// Tiles this rank rendered in the last pass.
+  std::size_t tiles_rendered() const { return m_mine.size(); }
+
+ private:
+  void coordinate();  // rank 0's thread: answers requests until every other rank is done
+
+  MPI_Comm m_comm = MPI_COMM_NULL;
+  int m_rank = 0, m_ranks = 1;
+  bool m_writer_succeeded = true;
+  bool m_rendering = false;
+  std::size_t m_tiles = 0;
+  std::atomic<std::size_t> m_next{0};  // rank 0: the next tile to hand out
+  std::mutex m_mutex;                  // a request and its answer; m_mine
+  bool m_exhausted = false;            // other ranks: rank 0 has no tile left
+  std::vector<std::size_t> m_mine;     // the tiles this rank rendered, as handed out
+  std::thread m_coordinator;
+};
+
+}  // namespace kappa
