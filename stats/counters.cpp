@@ -1,5 +1,8 @@
 #include "counters.h"
 
+#include <cstring>
+#include <type_traits>
+
 namespace kappa {
 
 ClassTotals& ClassTotals::operator+=(const ClassTotals& o) {
@@ -55,6 +58,27 @@ void CellCounters::merge(const CellCounters& other) {
   }
   totals += other.totals;
   m_per_cell_queries += other.m_per_cell_queries;
+}
+
+// ClassTotals is counts only, every one a 64-bit integer: copied as such.
+static_assert(std::is_trivially_copyable_v<ClassTotals> && sizeof(ClassTotals) % sizeof(std::uint64_t) == 0);
+constexpr std::size_t kTotalsWords = sizeof(ClassTotals) / sizeof(std::uint64_t);
+
+void CellCounters::flatten(std::vector<std::uint64_t>& out) const {
+  const std::size_t at = out.size();
+  out.resize(at + kTotalsWords);
+  std::memcpy(out.data() + at, &totals, sizeof(ClassTotals));
+  out.push_back(m_per_cell_queries);
+  if (m_cells)
+    for (std::size_t i = 0; i < m_cells->visits.size(); ++i) out.push_back(m_cells->visits.at(i));
+}
+
+void CellCounters::assign(const std::uint64_t*& in) {
+  std::memcpy(&totals, in, sizeof(ClassTotals));
+  in += kTotalsWords;
+  m_per_cell_queries = *in++;
+  if (m_cells)
+    for (std::size_t i = 0; i < m_cells->visits.size(); ++i) m_cells->visits.set(i, *in++);
 }
 
 }  // namespace kappa

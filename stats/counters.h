@@ -155,6 +155,11 @@ class CellCounters {
   /// Adds `other` into this (the per-thread merge); per-cell arrays that
   /// both share are already one.
   void merge(const CellCounters& other);
+  /// Every count, in one order (totals, per-cell queries, then each cell's
+  /// visits if counted per cell), appended to `out`; assign() reads them
+  /// back from `in`, advancing it: how the ranks of one frame add theirs.
+  void flatten(std::vector<std::uint64_t>& out) const;
+  void assign(const std::uint64_t*& in);
 
   /// Per cell, in cell order: rays that visited it (p_i * rays).
   std::vector<std::uint64_t> visits() const { return m_cells->visits.all(); }

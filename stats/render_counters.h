@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "counters.h"
 
@@ -85,6 +86,30 @@ struct RenderCounters {
   /// remembered (each one triangle test), and those it occluded, answered
   /// without a walk.
   std::uint64_t occluder_cache_tests = 0, occluder_cache_hits = 0;
+
+  /// Every count of every class and lobe in one order (CellCounters::flatten),
+  /// and back: the ranks of one frame sum theirs (kappa-mpi).
+  std::vector<std::uint64_t> flatten() const {
+    std::vector<std::uint64_t> out;
+    for (const CellCounters& c : classes) c.flatten(out);
+    for (const CellCounters& c : lobes) c.flatten(out);
+    out.insert(out.end(), ticks.begin(), ticks.end());
+    out.insert(out.end(), capped.begin(), capped.end());
+    out.insert(out.end(), lobe_ticks.begin(), lobe_ticks.end());
+    out.push_back(occluder_cache_tests);
+    out.push_back(occluder_cache_hits);
+    return out;
+  }
+  void assign(const std::vector<std::uint64_t>& flat) {
+    const std::uint64_t* in = flat.data();
+    for (CellCounters& c : classes) c.assign(in);
+    for (CellCounters& c : lobes) c.assign(in);
+    for (auto* a : {ticks.data(), capped.data()})
+      for (std::size_t k = 0; k < kRenderClasses; ++k) a[k] = *in++;
+    for (std::size_t k = 0; k < kBounceLobes; ++k) lobe_ticks[k] = *in++;
+    occluder_cache_tests = *in++;
+    occluder_cache_hits = *in++;
+  }
 
   void merge(const RenderCounters& o) {
     for (std::size_t k = 0; k < kRenderClasses; ++k) {

@@ -36,6 +36,10 @@ class SplitCounts {
     m_lo[i] = std::uint32_t(sum);
     m_hi[i] = std::uint32_t(sum >> 32);
   }
+  void set(std::size_t i, std::uint64_t v) {
+    m_lo[i] = std::uint32_t(v);
+    m_hi[i] = std::uint32_t(v >> 32);
+  }
   std::size_t size() const { return m_lo.size(); }
   std::vector<std::uint64_t> all() const {
     std::vector<std::uint64_t> v(size());

@@ -139,7 +139,6 @@ void refuse_what_a_shared_frame_cannot_do(const RenderOptions& options, const Bu
     throw InputError(what + " with more than one rank: not supported yet by kappa-mpi (run it with one rank, or build/kappa)");
   };
   if (budget.any()) refuse("--time-budget, --target-relmse and --adaptive");
-  if (options.stats == "on") refuse("--stats on (add --stats off)");
   if (options.accel == "auto") refuse("--accel auto");
   if (options.build.grid_res == "model") refuse("--grid-res model");
 }

@@ -167,4 +167,21 @@ void MpiFrameSplit::end_pass(Film& film, std::span<double> tile_estimates, std::
   KAPPA_CHECK_EQ(at, std::size_t(float_total));
 }
 
+std::uint64_t MpiFrameSplit::writer_value(std::uint64_t value) {
+  check(MPI_Bcast(&value, 1, MPI_UINT64_T, 0, m_comm), "MPI_Bcast");
+  return value;
+}
+
+void MpiFrameSplit::sum_on_writer(std::span<std::uint64_t> values) {
+  // In pieces of at most 2^30 values: MPI counts are ints.
+  constexpr std::size_t kPiece = std::size_t(1) << 30;
+  for (std::size_t at = 0; at < values.size(); at += kPiece) {
+    const int n = int(std::min(kPiece, values.size() - at));
+    if (m_rank == 0)
+      check(MPI_Reduce(MPI_IN_PLACE, values.data() + at, n, MPI_UINT64_T, MPI_SUM, 0, m_comm), "MPI_Reduce");
+    else
+      check(MPI_Reduce(values.data() + at, nullptr, n, MPI_UINT64_T, MPI_SUM, 0, m_comm), "MPI_Reduce");
+  }
+}
+
 }  // namespace kappa

@@ -29,6 +29,8 @@ class MpiFrameSplit final : public FrameSplit {
   void begin_pass(std::size_t tiles) override;
   std::optional<std::size_t> next_tile() override;
   void end_pass(Film& film, std::span<double> tile_estimates, std::span<std::uint64_t> counts) override;
+  std::uint64_t writer_value(std::uint64_t value) override;
+  void sum_on_writer(std::span<std::uint64_t> values) override;
 
   /// A pass has begun: from here a rank that fails cannot meet the others at
   /// an agreement, and the job must end (MPI_Abort).

@@ -9,6 +9,9 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "core/thread_limit.h"
 #include "renderer/render/frames.h"
@@ -29,8 +32,22 @@ RenderResult render_counting_with(const Scene& scene, const Walker& grid, const 
   const std::uint64_t asked = settings.cell_sample > 0 ? settings.cell_sample : auto_cell_sample(n);
   // Lobes are counted apart only where a surface is not Lambertian (RenderCounters).
   const bool lobes = scene.has_materials();
-  const PerCellPlan plan = plan_per_cell(n, lobes ? kCountedSets : kRenderClasses, std::uint64_t(active_threads()),
-                                         asked, grid.bytes(), settings.stats_max_bytes);
+  const std::uint64_t sets = lobes ? kCountedSets : kRenderClasses;
+  PerCellPlan plan = plan_per_cell(n, sets, std::uint64_t(active_threads()), asked, grid.bytes(), settings.stats_max_bytes);
+  if (TileSchedule* const split = settings.tiles) {
+    // A frame shared by processes counts per cell as its writer does (the
+    // same paths: 1 in the writer's rate, or none), whatever each process's
+    // threads and memory would choose alone, so that their counts add up to
+    // those of the writer's frame. 0: no per-cell counts.
+    const std::uint64_t every = split->writer_value(plan.mode == PerCell::no ? 0 : plan.every);
+    if (every == 0 && plan.mode != PerCell::no) plan = PerCellPlan{PerCell::no, 1, 0, plan.note};
+    else if (every != 0 && (plan.mode == PerCell::no || plan.every != every))
+      plan = plan_per_cell(n, sets, std::uint64_t(active_threads()), every, grid.bytes(), settings.stats_max_bytes);
+    // A process that cannot count as the writer does cannot add its counts.
+    if (every != 0 && (plan.mode == PerCell::no || plan.every != every))
+      throw std::runtime_error("per-cell statistics: this rank cannot count 1 path in " + std::to_string(every) +
+                               " within --grid-max-bytes as rank 0 does");
+  }
   const CellSampling sampling{plan.every, settings.seed};
   const SharedCellArrays shared =
       plan.mode == PerCell::shared ? make_shared_cell_arrays(n, lobes) : SharedCellArrays{};
@@ -53,7 +70,15 @@ RenderResult render_counting_with(const Scene& scene, const Walker& grid, const 
     if (!merged) merged = std::make_shared<RenderCounters>(std::move(c));
     else merged->merge(c);
   }
-  if (!merged) merged = std::make_shared<RenderCounters>(n, size, plan.mode == PerCell::own, lobes);
+  if (!merged)  // no tile rendered here (a rank given none): counts of the same shape, zero
+    merged = shared[0] ? std::make_shared<RenderCounters>(shared, size)
+                       : std::make_shared<RenderCounters>(n, size, plan.mode == PerCell::own, lobes);
+  if (TileSchedule* const split = settings.tiles) {
+    // Every process's counts, summed into the writer's.
+    std::vector<std::uint64_t> flat = merged->flatten();
+    split->sum_on_writer(flat);
+    merged->assign(flat);
+  }
   result.counters = merged;
   result.cell_sample = plan.every;
   result.stats_note = plan.note;

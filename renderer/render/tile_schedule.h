@@ -34,6 +34,13 @@ class TileSchedule {
   /// brings every tile's pixels and estimates into the writing process's
   /// film and the counts' sums into its `counts`.
   virtual void end_pass(Film& film, std::span<double> tile_estimates, std::span<std::uint64_t> counts) = 0;
+  /// The writing process's `value` (a per-frame choice it makes for all,
+  /// such as the per-cell sample rate), on every process; called by all at
+  /// the same point.
+  virtual std::uint64_t writer_value(std::uint64_t value) { return value; }
+  /// `values` summed over the processes into the writer's (the frame's
+  /// statistics, 64-bit); called by all at the same point, with as many.
+  virtual void sum_on_writer(std::span<std::uint64_t> /*values*/) {}
 };
 
 }  // namespace kappa

@@ -44,38 +44,62 @@ int kappa_lines(const std::string& text) {
 }
 #endif
 
-TEST(MpiRender, OneTwoAndThreeRanksRenderTheOneProcessImageBitwise) {
+/// A report's section without its times (which differ run to run), at any depth.
+nlohmann::json counts_of(nlohmann::json section) {
+  if (section.is_object()) {
+    section.erase("time_s");
+    for (auto& [name, value] : section.items()) value = counts_of(value);
+  }
+  return section;
+}
+
+TEST(MpiRender, OneTwoAndThreeRanksRenderTheOneProcessImageAndCountsBitwise) {
 #ifndef KAPPA_MPI_BINARY
   GTEST_SKIP() << "kappa-mpi is not built (CMake found no MPI)";
 #else
   test::TempDir dir;
   const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
-  // 6 x 5 tiles, the last row and column cut; the AOVs gathered too; the
-  // default accelerator (grid2, its occluder cache per tile).
-  const std::vector<std::string> common = {"render", scene, "--spp", "4", "--width", "96", "--height", "72",
-                                           "--stats", "off", "--aov", "albedo,normal,depth", "-q"};
-  auto args = common;
-  args.insert(args.end(), {"--out", (dir / "one.exr").string(), "--report", (dir / "one.json").string()});
-  const test::RunResult one = test::run_kappa(args);
-  ASSERT_EQ(one.exit_code, 0) << one.std_err;
-  const test::ExrFile reference = test::read_exr_file(dir / "one.exr");
-  const auto reference_report = nlohmann::json::parse(test::read_file(dir / "one.json"));
-  for (int ranks : {1, 2, 3}) {
-    const std::string name = "ranks" + std::to_string(ranks);
-    args = common;
-    // One render thread a rank: the ranks, not the threads, share the tiles.
-    args.insert(args.end(), {"--threads", "1", "--out", (dir / (name + ".exr")).string(), "--report",
-                             (dir / (name + ".json")).string()});
-    const test::RunResult r = run_mpi(ranks, args);
-    ASSERT_EQ(r.exit_code, 0) << ranks << " ranks: " << r.std_err;
-    const test::ExrFile image = test::read_exr_file(dir / (name + ".exr"));
-    ASSERT_EQ(image.channels, reference.channels);
-    EXPECT_TRUE(test::bitwise_equal(image.pixels, reference.pixels)) << ranks << " ranks";
-    const auto report = nlohmann::json::parse(test::read_file(dir / (name + ".json")));
-    EXPECT_EQ(report["render"]["rays"], reference_report["render"]["rays"]) << ranks << " ranks";
-    EXPECT_EQ(report["render"]["nonfinite_samples"], reference_report["render"]["nonfinite_samples"]);
-    // The frame's estimate sums every tile's, each gathered from its rank.
-    EXPECT_EQ(report["render"]["relmse_estimate"], reference_report["render"]["relmse_estimate"]) << ranks << " ranks";
+  // 6 x 5 tiles, the last row and column cut; the default accelerator
+  // (grid2, its occluder cache per tile). Statistics off with the geometric
+  // AOVs; on, with the cost AOV, every path counted per cell (the Cornell
+  // box's few cells) and 1 path in 4.
+  const std::vector<std::vector<std::string>> settings = {
+      {"--stats", "off", "--aov", "albedo,normal,depth"},
+      {"--stats", "on", "--aov", "cost"},
+      {"--stats", "on", "--cell-sample", "4"}};
+  for (const auto& setting : settings) {
+    std::vector<std::string> common = {"render", scene, "--spp", "4", "--width", "96", "--height", "72", "-q"};
+    common.insert(common.end(), setting.begin(), setting.end());
+    const std::string what = setting[1] + " " + setting[3];
+    auto args = common;
+    args.insert(args.end(), {"--out", (dir / "one.exr").string(), "--report", (dir / "one.json").string()});
+    const test::RunResult one = test::run_kappa(args);
+    ASSERT_EQ(one.exit_code, 0) << one.std_err;
+    const test::ExrFile reference = test::read_exr_file(dir / "one.exr");
+    const auto reference_report = nlohmann::json::parse(test::read_file(dir / "one.json"));
+    for (int ranks : {1, 2, 3}) {
+      const std::string name = "ranks" + std::to_string(ranks);
+      args = common;
+      // One render thread a rank: the ranks, not the threads, share the tiles.
+      args.insert(args.end(), {"--threads", "1", "--out", (dir / (name + ".exr")).string(), "--report",
+                               (dir / (name + ".json")).string()});
+      const test::RunResult r = run_mpi(ranks, args);
+      ASSERT_EQ(r.exit_code, 0) << what << ", " << ranks << " ranks: " << r.std_err;
+      const test::ExrFile image = test::read_exr_file(dir / (name + ".exr"));
+      ASSERT_EQ(image.channels, reference.channels);
+      EXPECT_TRUE(test::bitwise_equal(image.pixels, reference.pixels)) << what << ", " << ranks << " ranks";
+      const auto report = nlohmann::json::parse(test::read_file(dir / (name + ".json")));
+      EXPECT_EQ(report["render"]["rays"], reference_report["render"]["rays"]) << what << ", " << ranks << " ranks";
+      EXPECT_EQ(report["render"]["nonfinite_samples"], reference_report["render"]["nonfinite_samples"]);
+      // The frame's estimate sums every tile's, each gathered from its rank.
+      EXPECT_EQ(report["render"]["relmse_estimate"], reference_report["render"]["relmse_estimate"]) << what;
+      // Every count, kappa and p_tot of every class, summed over the ranks.
+      const nlohmann::json none;
+      EXPECT_EQ(counts_of(report.value("rays", none)), counts_of(reference_report.value("rays", none)))
+          << what << ", " << ranks << " ranks";
+      EXPECT_EQ(report.value("stats", none), reference_report.value("stats", none)) << what << ", " << ranks << " ranks";
+      if (setting[1] == "on") EXPECT_TRUE(report.value("rays", none).contains("camera")) << what;
+    }
   }
 #endif
 }
