@@ -64,11 +64,13 @@ AovSelection parse_aovs(const std::string& list) {
   return aov;
 }
 
-std::filesystem::path output_path(const RenderOptions& options, const Scene& scene) {
+/// The image's path; the default's folder is made by the process that writes
+/// (`writer`: kappa-mpi's other ranks, maybe on other hosts, make nothing).
+std::filesystem::path output_path(const RenderOptions& options, const Scene& scene, bool writer) {
   if (!options.out.empty()) return options.out;
   const std::filesystem::path dir = "out";
   std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
+  if (writer) std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError("out: cannot create the output folder: " + ec.message());
   return dir / (scene.name + ".exr");
 }
@@ -196,7 +198,7 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
   // hour of work.
   const std::filesystem::path calibration_path =
       options.calibration.empty() ? default_calibration_path() : std::filesystem::path(options.calibration);
-  const std::filesystem::path out_path = output_path(options, scene);
+  const std::filesystem::path out_path = output_path(options, scene, writer);
   std::vector<std::filesystem::path> inputs = scene.inputs;
   inputs.push_back(calibration_path);
   refuse_outputs_over_inputs({out_path, options.report, options.cell_map, options.preview}, inputs);
