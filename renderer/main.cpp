@@ -1,11 +1,6 @@
 // `kappa`: parse the command line, run the one subcommand it names.
 #include "renderer/cli/command_line.h"
-#include "renderer/commands/bench_command.h"
-#include "renderer/commands/calibrate_command.h"
-#include "renderer/commands/cast_command.h"
-#include "renderer/commands/converge_command.h"
-#include "renderer/commands/render_command.h"
-#include "renderer/commands/sweep_command.h"
+#include "renderer/entry/run_command.h"
 #include "renderer/io/output_target.h"
 
 #include <csignal>
@@ -24,15 +19,5 @@ int main(int argc, char** argv) {
   kappa::hold_closed_standard_descriptors();
   kappa::Command command;
   if (const auto exit_code = kappa::parse_command_line(argc, argv, command)) return *exit_code;
-  return kappa::exit_code_of([&] {
-    struct Run {
-      int operator()(const kappa::RenderOptions& o) const { return kappa::run_render(o); }
-      int operator()(const kappa::CastOptions& o) const { return kappa::run_cast(o); }
-      int operator()(const kappa::BenchOptions& o) const { return kappa::run_bench(o); }
-      int operator()(const kappa::CalibrateOptions& o) const { return kappa::run_calibrate(o); }
-      int operator()(const kappa::ConvergeOptions& o) const { return kappa::run_converge(o); }
-      int operator()(const kappa::SweepOptions& o) const { return kappa::run_sweep(o); }
-    };
-    return std::visit(Run{}, command);
-  });
+  return kappa::exit_code_of([&] { return kappa::run_command(command); });
 }

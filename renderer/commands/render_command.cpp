@@ -134,15 +134,34 @@ std::string traversal_summary(const nlohmann::ordered_json& cost) {
   return text;
 }
 
-/// What a frame shared by several processes cannot do yet (issue 48): one
-/// line, before anything is loaded.
-void refuse_what_a_shared_frame_cannot_do(const RenderOptions& options, const Budget& budget) {
-  const auto refuse = [](const std::string& what) {
-    throw InputError(what + " with more than one rank: not supported yet by kappa-mpi (run it with one rank, or build/kappa)");
-  };
-  if (budget.any()) refuse("--time-budget, --target-relmse and --adaptive");
-  if (options.accel == "auto") refuse("--accel auto");
-  if (options.build.grid_res == "model") refuse("--grid-res model");
+/// With --accel auto or --grid-res model on a frame shared by processes: the
+/// writer chooses (its calibration, its pilot) and builds; the others build
+/// what it chose, "grid2", "naive", "grid" or "grid 64x32x16" (a resolution
+/// the model chose), without a pilot of their own. An empty choice: the
+/// writer failed, and reports it.
+FrameAccelerator build_as_the_writer_chooses(FrameSplit& split, const Scene& scene, const RenderSettings& settings,
+                                             const AccelRequest& request, const Calibration& calibration,
+                                             TaskProgress* progress) {
+  if (split.writer()) {
+    FrameAccelerator built;
+    try {
+      built = build_frame_accelerator(scene, settings, request, calibration, progress);
+    } catch (...) {
+      split.writer_text("");
+      throw;
+    }
+    std::string choice(built.accel->name());
+    if (built.grid_choice) choice += " " + built.accel->cells()->resolution_text();
+    split.writer_text(choice);
+    return built;
+  }
+  const std::string choice = split.writer_text("");
+  if (choice.empty()) throw InputError("the writing rank failed to build the accelerator");
+  AccelRequest chosen = request;
+  const std::size_t space = choice.find(' ');
+  chosen.accel = choice.substr(0, space);
+  if (space != std::string::npos) chosen.build.grid_res = choice.substr(space + 1);
+  return {make_accelerator(chosen.accel, scene.triangles, chosen.build, progress), {}, nullptr};
 }
 
 /// The outputs a render claims before it renders (the writer's only).
@@ -155,7 +174,6 @@ struct ClaimedOutputs {
 int run_render(const RenderOptions& options, FrameSplit* split) {
   const Budget budget = budget_of(options);
   const bool shared_frame = split && split->processes() > 1;
-  if (shared_frame) refuse_what_a_shared_frame_cannot_do(options, budget);
   const bool writer = !split || split->writer();
   AovSelection aov = parse_aovs(options.aov);
   aov.variance = aov.variance || budget.target_relmse > 0;  // the estimate's inputs, per pixel
@@ -246,7 +264,9 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
   FrameAccelerator frame_accel = agreed_step(split, [&] {
     return with_progress(show_progress, [&](TaskProgress* progress) {
       const MemoryNeed need("building the accelerator over " + std::to_string(scene.triangles.size()) + " triangles", 0);
-      return build_frame_accelerator(scene, settings, request, *calibration, progress);
+      if (!shared_frame || (options.accel != "auto" && !grid_by_model))
+        return build_frame_accelerator(scene, settings, request, *calibration, progress);
+      return build_as_the_writer_chooses(*split, scene, settings, request, *calibration, progress);
     });
   });
   std::unique_ptr<Accelerator> accel = std::move(frame_accel.accel);
@@ -274,15 +294,17 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
     PassPlanner planner(budget, [] {
       return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
     });
-    guard.emplace();
+    // Ranks sharing a frame stop together or not at all: under kappa-mpi,
+    // Ctrl-C ends the job (mpirun's), with nothing written.
+    if (!shared_frame) guard.emplace();
     // Test hook: tests that interrupt a render read there how many passes
     // are complete, instead of guessing from the time.
-    const char* passes_file = std::getenv("KAPPA_TEST_PASSES_FILE");
+    const char* passes_file = writer ? std::getenv("KAPPA_TEST_PASSES_FILE") : nullptr;
     const auto note_passes = [passes_file](int passes) {
       if (passes_file) std::ofstream(passes_file) << passes << "\n";
     };
     note_passes(0);
-    PassControl control{&planner, &guard->flag(), [&](const FrameState& state, int passes) {
+    PassControl control{&planner, guard ? &guard->flag() : nullptr, [&](const FrameState& state, int passes) {
                           note_passes(passes);
                           if (TaskProgress* task = bar.task()) task->rename(pass_text(state, passes, budget));
                           double share = budget.time_s > 0 ? planner.elapsed() / budget.time_s : 0;
@@ -291,8 +313,9 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
                           bar.update(std::size_t(std::clamp(share, 0.0, 1.0) * 1000), 1000);
                         }};
     settings.passes = &control;
+    settings.tiles = split;  // with one process too: the report's mpi section
     result = render(scene, *accel, settings, film);
-    interrupted = result.interrupted || guard->interrupted();
+    interrupted = result.interrupted || (guard && guard->interrupted());
     if (interrupted && !result.interrupted) {
       // Ctrl-C after the last pass's last sample: its passes are complete,
       // but the run was interrupted, and the report says so.
@@ -300,7 +323,7 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
       result.stop_reason = "interrupted";
     }
   } else {
-    settings.tiles = shared_frame ? split : nullptr;
+    settings.tiles = split;  // with one process too: the report's mpi section
     result = render(scene, *accel, settings, film, [&bar](std::size_t done, std::size_t total) { bar.update(done, total); });
   }
   bar.finish();
@@ -340,6 +363,7 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
                     result, calibration, to_json(record));
   if (grid_choice) report["grid_choice"] = grid_choice->report;
   if (!frame_accel.accel_choice.is_null()) report["accel_choice"] = frame_accel.accel_choice;
+  if (split && !split->shares().empty()) report["mpi"] = mpi_section(split->shares(), split->tile_seconds());
 
   if (cell_map_out && result.counters) {
     if (result.counters->classes[0].per_cell()) {

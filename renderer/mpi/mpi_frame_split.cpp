@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "core/check.h"
+#include "core/thread_limit.h"
 #include "renderer/render/film.h"
 
 namespace kappa {
@@ -12,6 +13,10 @@ namespace {
 constexpr int kTagRequest = 1;  // a rank asks for a tile
 constexpr int kTagTile = 2;     // rank 0's answer: a tile, or -1 for none left
 constexpr int kTagDone = 3;     // a rank has rendered all its tiles of the pass
+
+void check(int code, const char* what) {
+  if (code != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
+}
 
 /// The film's channels, in one order every rank uses, with their components.
 std::vector<std::pair<std::vector<float>*, int>> channels(Film& film) {
@@ -22,19 +27,31 @@ std::vector<std::pair<std::vector<float>*, int>> channels(Film& film) {
   return c;
 }
 
-/// Calls `fn(pixel)` for every pixel of `tile`, row by row.
+/// Calls `fn(pixel)` for every pixel of `tile` of a width x height frame, row by row.
 template <class Fn>
-void for_each_pixel(const Film& film, std::size_t tile, Fn&& fn) {
-  const int tiles_x = (film.width + kTileSize - 1) / kTileSize;
+void for_each_pixel(int width, int height, std::size_t tile, Fn&& fn) {
+  const int tiles_x = (width + kTileSize - 1) / kTileSize;
   const int x0 = int(tile % std::size_t(tiles_x)) * kTileSize, y0 = int(tile / std::size_t(tiles_x)) * kTileSize;
-  for (int y = y0; y < std::min(y0 + kTileSize, film.height); ++y)
-    for (int x = x0; x < std::min(x0 + kTileSize, film.width); ++x)
-      fn(std::size_t(y) * std::size_t(film.width) + std::size_t(x));
+  for (int y = y0; y < std::min(y0 + kTileSize, height); ++y)
+    for (int x = x0; x < std::min(x0 + kTileSize, width); ++x) fn(std::size_t(y) * std::size_t(width) + std::size_t(x));
 }
 
-void check(int code, const char* what) {
-  if (code != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
-}
+/// A contiguous type of `bytes` bytes: MPI counts are ints, so pixels are
+/// counted as pixels, not bytes or floats (a 16k x 16k frame has 2^28).
+class PixelType {
+ public:
+  explicit PixelType(std::size_t bytes) {
+    check(MPI_Type_contiguous(int(bytes), MPI_BYTE, &m_type), "MPI_Type_contiguous");
+    check(MPI_Type_commit(&m_type), "MPI_Type_commit");
+  }
+  ~PixelType() { MPI_Type_free(&m_type); }
+  PixelType(const PixelType&) = delete;
+  PixelType& operator=(const PixelType&) = delete;
+  operator MPI_Datatype() const { return m_type; }
+
+ private:
+  MPI_Datatype m_type = MPI_DATATYPE_NULL;
+};
 
 }  // namespace
 
@@ -42,6 +59,9 @@ MpiFrameSplit::MpiFrameSplit(MPI_Comm comm) {
   check(MPI_Comm_dup(comm, &m_comm), "MPI_Comm_dup");
   MPI_Comm_rank(m_comm, &m_rank);
   MPI_Comm_size(m_comm, &m_ranks);
+  char host[MPI_MAX_PROCESSOR_NAME] = {};
+  int length = 0;
+  if (MPI_Get_processor_name(host, &length) == MPI_SUCCESS) m_host.assign(host, std::size_t(std::max(length, 0)));
 }
 
 MpiFrameSplit::~MpiFrameSplit() {
@@ -59,10 +79,17 @@ bool MpiFrameSplit::all_succeeded(bool succeeded) {
 
 void MpiFrameSplit::begin_pass(std::size_t tiles) {
   m_rendering = true;
+  if (m_order.size() != tiles) {  // the first pass: tile order
+    m_order.resize(tiles);
+    for (std::size_t t = 0; t < tiles; ++t) m_order[t] = t;
+    m_tile_seconds.assign(tiles, 0.0);
+    m_tile_seconds_sum.assign(m_rank == 0 ? tiles : 0, 0.0);
+  }
   m_tiles = tiles;
   m_next = 0;
   m_exhausted = false;
   m_mine.clear();
+  m_pass_start = std::chrono::steady_clock::now();
   if (m_rank == 0 && m_ranks > 1) m_coordinator = std::thread([this] { coordinate(); });
 }
 
@@ -76,19 +103,36 @@ void MpiFrameSplit::coordinate() {
       ++done;
       continue;
     }
-    const std::size_t tile = m_next.fetch_add(1);
-    const long long answer = tile < m_tiles ? (long long)tile : -1;
+    const std::size_t next = m_next.fetch_add(1);
+    const long long answer = next < m_tiles ? (long long)m_order[next] : -1;
     MPI_Send(&answer, 1, MPI_LONG_LONG, status.MPI_SOURCE, kTagTile, m_comm);
   }
 }
 
+void MpiFrameSplit::TileClock::start(const MpiFrameSplit* split, std::size_t tile) {
+  owner = split;
+  current = tile;
+  began = std::chrono::steady_clock::now();
+}
+
+thread_local MpiFrameSplit::TileClock MpiFrameSplit::t_clock;
+
 std::optional<std::size_t> MpiFrameSplit::next_tile() {
-  if (m_rank == 0) {
-    const std::size_t tile = m_next.fetch_add(1);
-    if (tile >= m_tiles) return std::nullopt;
-    const std::lock_guard<std::mutex> lock(m_mutex);
-    m_mine.push_back(tile);
+  // The calling thread's last tile is done: its seconds order the next pass.
+  if (t_clock.owner == this) {
+    m_tile_seconds[t_clock.current] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_clock.began).count();
+    t_clock.owner = nullptr;
+  }
+  const auto handed = [&](std::size_t tile) {
+    m_mine.push_back(tile);  // under m_mutex
+    t_clock.start(this, tile);
     return tile;
+  };
+  if (m_rank == 0) {
+    const std::size_t next = m_next.fetch_add(1);
+    if (next >= m_tiles) return std::nullopt;
+    const std::lock_guard<std::mutex> lock(m_mutex);
+    return handed(m_order[next]);
   }
   // One request in flight per rank: its threads take turns asking.
   const std::lock_guard<std::mutex> lock(m_mutex);
@@ -101,75 +145,185 @@ std::optional<std::size_t> MpiFrameSplit::next_tile() {
     m_exhausted = true;
     return std::nullopt;
   }
-  m_mine.push_back(std::size_t(answer));
-  return std::size_t(answer);
+  return handed(std::size_t(answer));
 }
 
-void MpiFrameSplit::end_pass(Film& film, std::span<double> tile_estimates, std::span<std::uint64_t> counts) {
+void MpiFrameSplit::end_pass(Film* film, std::span<double> tile_estimates, std::span<std::uint64_t> counts) {
+  // The rank's own time, before it waits for the others.
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_pass_start).count();
   if (m_rank != 0) {
     const long long done = 0;
     check(MPI_Send(&done, 1, MPI_LONG_LONG, 0, kTagDone, m_comm), "MPI_Send");
   } else if (m_coordinator.joinable()) {
     m_coordinator.join();
   }
-  // Every rank's tiles, then their pixels (every channel, tile by tile) and
-  // estimates, to rank 0; counts summed there (64-bit).
-  const auto film_channels = channels(film);
+  // Every rank's tiles, their seconds and estimates, then their pixels
+  // (every channel, tile by tile), to rank 0; counts summed there (64-bit).
   std::vector<long long> my_tiles(m_mine.begin(), m_mine.end());
-  std::vector<float> my_pixels;
-  std::vector<double> my_estimates;
-  if (m_rank != 0) {
-    for (std::size_t tile : m_mine) {
-      for_each_pixel(film, tile, [&](std::size_t p) {
-        for (const auto& [v, n] : film_channels)
-          for (int c = 0; c < n; ++c) my_pixels.push_back((*v)[p * std::size_t(n) + std::size_t(c)]);
-      });
-      my_estimates.push_back(tile < tile_estimates.size() ? tile_estimates[tile] : 0.0);
-    }
+  std::vector<double> my_seconds, my_estimates;
+  for (std::size_t tile : m_mine) {
+    my_seconds.push_back(m_tile_seconds[tile]);
+    my_estimates.push_back(tile < tile_estimates.size() ? tile_estimates[tile] : 0.0);
   }
-  const int my_count = m_rank == 0 ? 0 : int(my_tiles.size());
+  const int my_count = int(my_tiles.size());
   const std::size_t ranks = std::size_t(m_ranks);
   std::vector<int> tile_counts(ranks), tile_offsets(ranks);
   check(MPI_Gather(&my_count, 1, MPI_INT, tile_counts.data(), 1, MPI_INT, 0, m_comm), "MPI_Gather");
   int total = 0;
   for (int r = 0; r < m_ranks; ++r) tile_offsets[std::size_t(r)] = total, total += tile_counts[std::size_t(r)];
   std::vector<long long> all_tiles(std::size_t(std::max(total, 1)));
-  std::vector<double> all_estimates(std::size_t(std::max(total, 1)));
+  std::vector<double> all_seconds(all_tiles.size()), all_estimates(all_tiles.size());
   check(MPI_Gatherv(my_tiles.data(), my_count, MPI_LONG_LONG, all_tiles.data(), tile_counts.data(), tile_offsets.data(),
                     MPI_LONG_LONG, 0, m_comm),
+        "MPI_Gatherv");
+  check(MPI_Gatherv(my_seconds.data(), my_count, MPI_DOUBLE, all_seconds.data(), tile_counts.data(), tile_offsets.data(),
+                    MPI_DOUBLE, 0, m_comm),
         "MPI_Gatherv");
   check(MPI_Gatherv(my_estimates.data(), my_count, MPI_DOUBLE, all_estimates.data(), tile_counts.data(),
                     tile_offsets.data(), MPI_DOUBLE, 0, m_comm),
         "MPI_Gatherv");
-  // Pixel counts per rank, from the tiles' sizes (edge tiles are smaller).
-  std::vector<int> float_counts(ranks), float_offsets(ranks);
-  const int my_floats = int(my_pixels.size());
-  check(MPI_Gather(&my_floats, 1, MPI_INT, float_counts.data(), 1, MPI_INT, 0, m_comm), "MPI_Gather");
-  long long float_total = 0;
-  for (int r = 0; r < m_ranks; ++r) float_offsets[std::size_t(r)] = int(float_total), float_total += float_counts[std::size_t(r)];
-  std::vector<float> all_pixels(std::size_t(std::max<long long>(float_total, 1)));
-  check(MPI_Gatherv(my_pixels.data(), my_floats, MPI_FLOAT, all_pixels.data(), float_counts.data(),
-                    float_offsets.data(), MPI_FLOAT, 0, m_comm),
-        "MPI_Gatherv");
+  if (film) gather_pixels(*film);
+  gather_shares(counts.empty() ? 0 : counts[0], seconds);
   std::vector<std::uint64_t> summed(counts.size(), 0);
   check(MPI_Reduce(counts.data(), summed.data(), int(counts.size()), MPI_UINT64_T, MPI_SUM, 0, m_comm), "MPI_Reduce");
   if (m_rank != 0) return;
   std::copy(summed.begin(), summed.end(), counts.begin());
-  std::size_t at = 0;
   for (int k = 0; k < total; ++k) {
     const std::size_t tile = std::size_t(all_tiles[std::size_t(k)]);
-    for_each_pixel(film, tile, [&](std::size_t p) {
+    if (tile < tile_estimates.size()) tile_estimates[tile] = all_estimates[std::size_t(k)];
+    if (tile < m_tile_seconds.size()) {
+      m_tile_seconds[tile] = all_seconds[std::size_t(k)];
+      m_tile_seconds_sum[tile] += all_seconds[std::size_t(k)];
+    }
+  }
+  // The next pass's tiles, the slowest of this one first (ties in tile
+  // order): the last tiles handed out are then the quickest, and no rank is
+  // left with a long one while the others wait.
+  std::stable_sort(m_order.begin(), m_order.end(),
+                   [&](std::size_t a, std::size_t b) { return m_tile_seconds[a] > m_tile_seconds[b]; });
+}
+
+void MpiFrameSplit::gather_pixels(Film& film) {
+  // The other ranks' tiles' pixels, every channel, in the order of their
+  // tiles; rank 0 has its own. Counted in pixels (PixelType).
+  const auto film_channels = channels(film);
+  std::size_t floats_per_pixel = 0;
+  for (const auto& [v, n] : film_channels) floats_per_pixel += std::size_t(n);
+  const PixelType pixel_type(floats_per_pixel * sizeof(float));
+  std::vector<float> my_pixels;
+  if (m_rank != 0)
+    for (std::size_t tile : m_mine)
+      for_each_pixel(film.width, film.height, tile, [&](std::size_t p) {
+        for (const auto& [v, n] : film_channels)
+          for (int c = 0; c < n; ++c) my_pixels.push_back((*v)[p * std::size_t(n) + std::size_t(c)]);
+      });
+  const std::size_t ranks = std::size_t(m_ranks);
+  const int my_count = int(my_pixels.size() / floats_per_pixel);
+  std::vector<int> counts(ranks), offsets(ranks);
+  check(MPI_Gather(&my_count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, m_comm), "MPI_Gather");
+  long long total = 0;
+  for (std::size_t r = 0; r < ranks; ++r) offsets[r] = int(total), total += counts[r];
+  std::vector<float> all_pixels(std::size_t(std::max<long long>(total, 1)) * floats_per_pixel);
+  std::vector<long long> tiles(m_mine.begin(), m_mine.end());
+  const int my_tiles = m_rank == 0 ? 0 : int(tiles.size());
+  std::vector<int> tile_counts(ranks), tile_offsets(ranks);
+  check(MPI_Gather(&my_tiles, 1, MPI_INT, tile_counts.data(), 1, MPI_INT, 0, m_comm), "MPI_Gather");
+  int tile_total = 0;
+  for (std::size_t r = 0; r < ranks; ++r) tile_offsets[r] = tile_total, tile_total += tile_counts[r];
+  std::vector<long long> all_tiles(std::size_t(std::max(tile_total, 1)));
+  check(MPI_Gatherv(tiles.data(), my_tiles, MPI_LONG_LONG, all_tiles.data(), tile_counts.data(), tile_offsets.data(),
+                    MPI_LONG_LONG, 0, m_comm),
+        "MPI_Gatherv");
+  check(MPI_Gatherv(my_pixels.data(), my_count, pixel_type, all_pixels.data(), counts.data(), offsets.data(), pixel_type,
+                    0, m_comm),
+        "MPI_Gatherv");
+  if (m_rank != 0) return;
+  std::size_t at = 0;
+  for (int k = 0; k < tile_total; ++k)
+    for_each_pixel(film.width, film.height, std::size_t(all_tiles[std::size_t(k)]), [&](std::size_t p) {
       for (const auto& [v, n] : film_channels)
         for (int c = 0; c < n; ++c) (*v)[p * std::size_t(n) + std::size_t(c)] = all_pixels[at++];
     });
-    if (tile < tile_estimates.size()) tile_estimates[tile] = all_estimates[std::size_t(k)];
+  KAPPA_CHECK_EQ(at, std::size_t(total) * floats_per_pixel);
+}
+
+void MpiFrameSplit::share_pass_state(int width, int height, std::size_t bytes,
+                                     const std::function<void(std::size_t, std::byte*)>& pack,
+                                     const std::function<void(std::size_t, const std::byte*)>& unpack) {
+  // Every rank's tiles of the pass and their pixels' state, to every rank.
+  const PixelType pixel_type(bytes);
+  std::vector<long long> tiles(m_mine.begin(), m_mine.end());
+  std::vector<std::byte> mine;
+  for (std::size_t tile : m_mine)
+    for_each_pixel(width, height, tile, [&](std::size_t p) {
+      mine.resize(mine.size() + bytes);
+      pack(p, mine.data() + mine.size() - bytes);
+    });
+  const std::size_t ranks = std::size_t(m_ranks);
+  const int my_tiles = int(tiles.size()), my_pixels = int(mine.size() / bytes);
+  std::vector<int> tile_counts(ranks), tile_offsets(ranks), pixel_counts(ranks), pixel_offsets(ranks);
+  check(MPI_Allgather(&my_tiles, 1, MPI_INT, tile_counts.data(), 1, MPI_INT, m_comm), "MPI_Allgather");
+  check(MPI_Allgather(&my_pixels, 1, MPI_INT, pixel_counts.data(), 1, MPI_INT, m_comm), "MPI_Allgather");
+  int tile_total = 0;
+  long long pixel_total = 0;
+  for (std::size_t r = 0; r < ranks; ++r) {
+    tile_offsets[r] = tile_total, tile_total += tile_counts[r];
+    pixel_offsets[r] = int(pixel_total), pixel_total += pixel_counts[r];
   }
-  KAPPA_CHECK_EQ(at, std::size_t(float_total));
+  std::vector<long long> all_tiles(std::size_t(std::max(tile_total, 1)));
+  std::vector<std::byte> all(std::size_t(std::max<long long>(pixel_total, 1)) * bytes);
+  check(MPI_Allgatherv(tiles.data(), my_tiles, MPI_LONG_LONG, all_tiles.data(), tile_counts.data(), tile_offsets.data(),
+                       MPI_LONG_LONG, m_comm),
+        "MPI_Allgatherv");
+  check(MPI_Allgatherv(mine.data(), my_pixels, pixel_type, all.data(), pixel_counts.data(), pixel_offsets.data(),
+                       pixel_type, m_comm),
+        "MPI_Allgatherv");
+  // Each rank's own tiles are as they were; the others' are copied in.
+  std::size_t at = 0;
+  for (std::size_t r = 0; r < ranks; ++r)
+    for (int k = tile_offsets[r]; k < tile_offsets[r] + tile_counts[r]; ++k)
+      for_each_pixel(width, height, std::size_t(all_tiles[std::size_t(k)]), [&](std::size_t p) {
+        if (int(r) != m_rank) unpack(p, all.data() + at);
+        at += bytes;
+      });
+  KAPPA_CHECK_EQ(at, std::size_t(pixel_total) * bytes);
+}
+
+void MpiFrameSplit::gather_shares(std::uint64_t rays, double seconds) {
+  // Fixed-size records: the host's name padded to MPI_MAX_PROCESSOR_NAME.
+  struct Record {
+    std::uint64_t tiles, rays, threads;
+    double seconds;
+    char host[MPI_MAX_PROCESSOR_NAME];
+  };
+  Record mine{m_mine.size(), rays, std::uint64_t(active_threads()), seconds, {}};
+  std::memcpy(mine.host, m_host.data(), std::min(m_host.size(), sizeof mine.host - 1));
+  std::vector<Record> all(m_rank == 0 ? std::size_t(m_ranks) : 0);
+  check(MPI_Gather(&mine, int(sizeof mine), MPI_BYTE, all.data(), int(sizeof mine), MPI_BYTE, 0, m_comm), "MPI_Gather");
+  if (m_rank != 0) return;
+  m_shares.resize(std::size_t(m_ranks));
+  for (int r = 0; r < m_ranks; ++r) {
+    ProcessShare& share = m_shares[std::size_t(r)];
+    const Record& record = all[std::size_t(r)];
+    share.process = r;
+    share.host = std::string(record.host, strnlen(record.host, sizeof record.host));
+    share.threads = int(record.threads);
+    share.tiles += record.tiles;
+    share.rays = record.rays;  // the rank's counts so far, all passes
+    share.time_s += record.seconds;
+  }
 }
 
 std::uint64_t MpiFrameSplit::writer_value(std::uint64_t value) {
   check(MPI_Bcast(&value, 1, MPI_UINT64_T, 0, m_comm), "MPI_Bcast");
   return value;
+}
+
+std::string MpiFrameSplit::writer_text(const std::string& text) {
+  std::string out = text;
+  out.resize(std::size_t(writer_value(text.size())));
+  check(MPI_Bcast(out.data(), int(out.size()), MPI_CHAR, 0, m_comm), "MPI_Bcast");
+  return out;
 }
 
 void MpiFrameSplit::sum_on_writer(std::span<std::uint64_t> values) {

@@ -7,6 +7,7 @@
 #include <mpi.h>
 
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -28,9 +29,15 @@ class MpiFrameSplit final : public FrameSplit {
 
   void begin_pass(std::size_t tiles) override;
   std::optional<std::size_t> next_tile() override;
-  void end_pass(Film& film, std::span<double> tile_estimates, std::span<std::uint64_t> counts) override;
+  void end_pass(Film* film, std::span<double> tile_estimates, std::span<std::uint64_t> counts) override;
+  void share_pass_state(int width, int height, std::size_t bytes,
+                        const std::function<void(std::size_t, std::byte*)>& pack,
+                        const std::function<void(std::size_t, const std::byte*)>& unpack) override;
   std::uint64_t writer_value(std::uint64_t value) override;
+  std::string writer_text(const std::string& text) override;
   void sum_on_writer(std::span<std::uint64_t> values) override;
+  std::vector<ProcessShare> shares() const override { return m_shares; }
+  std::vector<double> tile_seconds() const override { return m_tile_seconds_sum; }
 
   /// A pass has begun: from here a rank that fails cannot meet the others at
   /// an agreement, and the job must end (MPI_Abort).
@@ -40,17 +47,34 @@ class MpiFrameSplit final : public FrameSplit {
 
  private:
   void coordinate();  // rank 0's thread: answers requests until every other rank is done
+  void gather_shares(std::uint64_t rays, double seconds);  // this pass's, added to m_shares on rank 0
+  void gather_pixels(Film& film);                          // the other ranks' tiles, into rank 0's film
+
+  /// A render thread's tile in progress, timed (the next pass's order).
+  struct TileClock {
+    const MpiFrameSplit* owner = nullptr;
+    std::size_t current = 0;
+    std::chrono::steady_clock::time_point began;
+    void start(const MpiFrameSplit* split, std::size_t tile);
+  };
+  static thread_local TileClock t_clock;
 
   MPI_Comm m_comm = MPI_COMM_NULL;
   int m_rank = 0, m_ranks = 1;
   bool m_writer_succeeded = true;
   bool m_rendering = false;
   std::size_t m_tiles = 0;
-  std::atomic<std::size_t> m_next{0};  // rank 0: the next tile to hand out
+  std::atomic<std::size_t> m_next{0};  // rank 0: the next of m_order to hand out
   std::mutex m_mutex;                  // a request and its answer; m_mine
   bool m_exhausted = false;            // other ranks: rank 0 has no tile left
   std::vector<std::size_t> m_mine;     // the tiles this rank rendered, as handed out
   std::thread m_coordinator;
+  std::string m_host;                            // MPI_Get_processor_name
+  std::chrono::steady_clock::time_point m_pass_start;
+  std::vector<ProcessShare> m_shares;            // rank 0: every rank's, summed over the passes
+  std::vector<std::size_t> m_order;              // rank 0: the order tiles go out in this pass
+  std::vector<double> m_tile_seconds;            // each tile's seconds in its last pass (rank 0: all)
+  std::vector<double> m_tile_seconds_sum;        // rank 0: each tile's, summed over the passes
 };
 
 }  // namespace kappa

@@ -6,20 +6,20 @@
 #include <mpi.h>
 
 #include <fcntl.h>
+#include <tbb/task_arena.h>
 #include <unistd.h>
 
+#include <algorithm>
+
 #include <csignal>
+#include <string>
 #include <cstdio>
 #include <variant>
 
 #include "core/warning_log.h"
 #include "renderer/cli/command_line.h"
-#include "renderer/commands/bench_command.h"
-#include "renderer/commands/calibrate_command.h"
-#include "renderer/commands/cast_command.h"
-#include "renderer/commands/converge_command.h"
 #include "renderer/commands/render_command.h"
-#include "renderer/commands/sweep_command.h"
+#include "renderer/entry/run_command.h"
 #include "renderer/io/output_target.h"
 #include "renderer/mpi/mpi_frame_split.h"
 
@@ -41,6 +41,29 @@ auto without_stderr(bool silent, Fn&& fn) {
     close(saved);
   }
   return result;
+}
+
+/// --threads' default on a rank: its host's cores shared by the ranks on
+/// that host (MPI_COMM_TYPE_SHARED), at least one, within the cores the
+/// rank may run on. mpirun binds each rank to one core by default (Open
+/// MPI 4 with 2 ranks or fewer), which leaves a rank alone on its host one
+/// thread: said once, with the flag that gives it its share.
+int default_threads_per_rank(int rank) {
+  MPI_Comm host;
+  int ranks_here = 1;
+  if (MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &host) == MPI_SUCCESS) {
+    MPI_Comm_size(host, &ranks_here);
+    MPI_Comm_free(&host);
+  }
+  const long host_cores = std::max(1L, sysconf(_SC_NPROCESSORS_ONLN));
+  const int share = std::max(1, int(host_cores / std::max(1, ranks_here)));
+  const int usable = tbb::this_task_arena::max_concurrency();  // the affinity mask's cores
+  if (usable < share)
+    kappa::warning_log().add("kappa-mpi: rank " + std::to_string(rank) + " may run on " + std::to_string(usable) +
+                             " core(s), fewer than its share of its host's " + std::to_string(host_cores) +
+                             " (mpirun binds ranks to cores by default): run mpirun --bind-to none, or --map-by "
+                             "slot:PE=N for N threads a rank");
+  return std::min(share, usable);
 }
 
 }  // namespace
@@ -76,7 +99,10 @@ int main(int argc, char** argv) {
   kappa::Command command;
   if (const auto code = without_stderr(rank != 0, [&] { return kappa::parse_command_line(argc, argv, command); }))
     return finish(*code);
-  const auto* render = std::get_if<kappa::RenderOptions>(&command);
+  auto* render = std::get_if<kappa::RenderOptions>(&command);
+  // Called by every rank (a collective), whatever the command.
+  const int threads_per_rank = default_threads_per_rank(rank);
+  if (render && render->threads == 0) render->threads = threads_per_rank;
   if (ranks > 1 && !render) {
     if (rank == 0)
       std::fprintf(stderr, "kappa: error: only render runs on more than one rank (mpirun -np 1, or build/kappa)\n");
@@ -104,15 +130,7 @@ int main(int argc, char** argv) {
         return 2;  // the writer reports the same failure
       }
     }
-    struct Run {
-      int operator()(const kappa::RenderOptions& o) const { return kappa::run_render(o); }
-      int operator()(const kappa::CastOptions& o) const { return kappa::run_cast(o); }
-      int operator()(const kappa::BenchOptions& o) const { return kappa::run_bench(o); }
-      int operator()(const kappa::CalibrateOptions& o) const { return kappa::run_calibrate(o); }
-      int operator()(const kappa::ConvergeOptions& o) const { return kappa::run_converge(o); }
-      int operator()(const kappa::SweepOptions& o) const { return kappa::run_sweep(o); }
-    };
-    return std::visit(Run{}, command);
+    return kappa::run_command(command);
   });
   // A rank that failed where the others do not know it (rendering, writing)
   // ends the job: the others would wait for it forever.

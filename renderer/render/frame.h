@@ -50,8 +50,10 @@ struct RenderSettings {
   /// auto_cell_sample); per-class totals always count every ray.
   std::uint64_t cell_sample = 0;
   PassControl* passes = nullptr;  ///< a progressive render's budgets, or one pass of spp
-  /// The tiles this process renders (tile_schedule.h), or nullptr for every
-  /// tile. Only a frame of one pass (no `passes`) takes one.
+  /// The tiles this process renders in each pass (tile_schedule.h), or
+  /// nullptr for every tile. With `passes` too, the schedule's writer
+  /// decides each pass (its planner's) and every process keeps every
+  /// pixel's sums (TileSchedule::share_pass_state).
   TileSchedule* tiles = nullptr;
   /// Test-only: samples for which this returns true read NaN, as a broken
   /// BSDF's would (tests show that such samples are dropped, not averaged).

@@ -5,15 +5,28 @@
 // every per-frame choice. Nothing here knows MPI: renderer/mpi/ implements it.
 #pragma once
 
+#include <cstdint>
 #include <exception>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "renderer/render/tile_schedule.h"
 
 namespace kappa {
+
+/// One process's share of a shared frame, over its passes (the report's
+/// `mpi.per_rank`): where it ran, with how many threads, how many tiles and
+/// rays it rendered, and the seconds from each pass's start to its last tile.
+struct ProcessShare {
+  int process = 0;
+  std::string host;
+  int threads = 0;
+  std::uint64_t tiles = 0, rays = 0;
+  double time_s = 0;
+};
 
 class FrameSplit : public TileSchedule {
  public:
@@ -26,6 +39,16 @@ class FrameSplit : public TileSchedule {
   virtual bool all_succeeded(bool succeeded) = 0;
   /// Whether the writer's step succeeded, at the last all_succeeded.
   virtual bool writer_succeeded() const = 0;
+  /// The writer's `text` (a choice it made for all: the accelerator `auto`
+  /// chose, the resolution `--grid-res model` chose), on every process;
+  /// called by all at the same point.
+  virtual std::string writer_text(const std::string& text) = 0;
+  /// On the writer, after the last pass: every process's share, by process
+  /// (empty on the others).
+  virtual std::vector<ProcessShare> shares() const = 0;
+  /// On the writer, after the last pass: each tile's seconds on the thread
+  /// that rendered it, summed over the passes, by tile (empty on the others).
+  virtual std::vector<double> tile_seconds() const = 0;
 };
 
 /// Thrown on every process where a shared frame stops at an agreed step

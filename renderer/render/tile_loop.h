@@ -10,8 +10,11 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cstring>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 #include "core/check.h"
@@ -24,6 +27,23 @@
 #include "renderer/render/tile_schedule.h"
 
 namespace kappa {
+
+/// A progressive frame shared by processes: the pass's pixels rendered
+/// elsewhere, their samples and AOV sums, into this process's `acc`.
+inline void share_pass_state(TileSchedule& schedule, FrameAccumulator& acc, int width, int height) {
+  static_assert(std::is_trivially_copyable_v<PixelSamples> && std::is_trivially_copyable_v<PixelAovSums>);
+  const std::size_t aov_bytes = acc.has_aovs() ? sizeof(PixelAovSums) : 0;
+  schedule.share_pass_state(
+      width, height, sizeof(PixelSamples) + aov_bytes,
+      [&](std::size_t pixel, std::byte* out) {
+        std::memcpy(out, &acc.samples(pixel), sizeof(PixelSamples));
+        if (aov_bytes) std::memcpy(out + sizeof(PixelSamples), &acc.aov_sums(pixel), aov_bytes);
+      },
+      [&](std::size_t pixel, const std::byte* in) {
+        std::memcpy(&acc.samples(pixel), in, sizeof(PixelSamples));
+        if (aov_bytes) std::memcpy(&acc.aov_sums(pixel), in + sizeof(PixelSamples), aov_bytes);
+      });
+}
 
 /// The tile loop, for one choice of queries. `make_queries` gives a thread
 /// its Queries object for a tile.
@@ -40,7 +60,6 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
   const std::atomic<bool>* const interrupt = control ? control->interrupt : nullptr;
   const bool adaptive = planner && planner->budget().adaptive;
   TileSchedule* const schedule = settings.tiles;
-  KAPPA_CHECK(!schedule || !control);  // a schedule splits frames of one pass (frame.h)
 
   struct Counters {
     std::uint64_t rays = 0, nonfinite = 0;
@@ -154,7 +173,9 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
   Counters completed;  // as of the last completed pass
   FrameState state{0, film.pixels(), 0.0};
   for (;;) {
-    const int count = planner ? planner->next_pass(state) : (result.passes == 0 ? settings.spp : 0);
+    int count = planner ? planner->next_pass(state) : (result.passes == 0 ? settings.spp : 0);
+    // Processes sharing a frame take the writer's pass: its clock decides.
+    if (schedule && planner) count = int(schedule->writer_value(std::uint64_t(std::max(count, 0))));
     if (count <= 0) break;
     run_pass(std::uint32_t(state.spp), std::uint32_t(count));
     if (abandoned.load()) {
@@ -167,8 +188,9 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
     if (schedule) {
       // The frame's pixels, estimates and counts, from every process that shares it.
       std::uint64_t counts[2] = {completed.rays, completed.nonfinite};
-      schedule->end_pass(film, tile_estimates, counts);
+      schedule->end_pass(acc ? nullptr : &film, tile_estimates, counts);
       completed = Counters{counts[0], counts[1]};
+      if (acc) share_pass_state(*schedule, *acc, film.width, film.height);
     }
     if (acc) {
       // The film of every completed pass, ready to be written if the next

@@ -1,5 +1,5 @@
 // Which of a pass's tiles this process renders. Without a schedule a frame
-// renders every tile; with one, the tiles it hands out (kappa-mpi's ranks
+// renders every tile; with one, in every pass, the tiles it hands out (kappa-mpi's ranks
 // share a frame this way, issue 48). A pixel's samples depend only on (seed,
 // pixel, sample index), and a tile's per-tile state (its occluder cache)
 // begins and ends with the tile, so a tile renders the same pixels wherever
@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 
@@ -32,8 +33,18 @@ class TileSchedule {
   /// relMSE estimates are in `tile_estimates` (by tile), with this process's
   /// `counts` (rays, non-finite samples): a schedule shared by processes
   /// brings every tile's pixels and estimates into the writing process's
-  /// film and the counts' sums into its `counts`.
-  virtual void end_pass(Film& film, std::span<double> tile_estimates, std::span<std::uint64_t> counts) = 0;
+  /// film and the counts' sums into its `counts`. A progressive frame's
+  /// film is resolved from its sums after the pass: `film` is null then,
+  /// and share_pass_state follows.
+  virtual void end_pass(Film* film, std::span<double> tile_estimates, std::span<std::uint64_t> counts) = 0;
+  /// A progressive frame, whose every process keeps every pixel's running
+  /// sums (`bytes` a pixel) so that each decides the next pass alike: after
+  /// end_pass, the pixels of every tile rendered elsewhere in the pass, into
+  /// this process's sums. `pack(pixel, out)` writes one pixel's `bytes`,
+  /// `unpack(pixel, in)` reads them; `width` the frame's, for the tiles.
+  virtual void share_pass_state(int /*width*/, int /*height*/, std::size_t /*bytes*/,
+                                const std::function<void(std::size_t, std::byte*)>& /*pack*/,
+                                const std::function<void(std::size_t, const std::byte*)>& /*unpack*/) {}
   /// The writing process's `value` (a per-frame choice it makes for all,
   /// such as the per-cell sample rate), on every process; called by all at
   /// the same point.

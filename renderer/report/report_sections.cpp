@@ -1,5 +1,7 @@
 #include "renderer/report/report_sections.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 #include "core/input_file.h"
 #include "renderer/image/image_library.h"
@@ -8,6 +10,28 @@
 #include "stats/report.h"
 
 namespace kappa {
+
+nlohmann::ordered_json mpi_section(const std::vector<ProcessShare>& shares, const std::vector<double>& tile_seconds) {
+  nlohmann::ordered_json per_rank = nlohmann::ordered_json::array(), threads = nlohmann::ordered_json::array();
+  bool same_threads = true;
+  double slowest = 0, sum = 0;
+  for (const ProcessShare& s : shares) {
+    per_rank.push_back({{"rank", s.process}, {"host", s.host}, {"threads", s.threads}, {"tiles", s.tiles},
+                        {"rays", s.rays}, {"time_s", s.time_s}});
+    threads.push_back(s.threads);
+    same_threads = same_threads && s.threads == shares.front().threads;
+    slowest = std::max(slowest, s.time_s);
+    sum += s.time_s;
+  }
+  nlohmann::ordered_json j;
+  j["ranks"] = shares.size();
+  j["threads_per_rank"] = same_threads && !shares.empty() ? nlohmann::ordered_json(shares.front().threads) : threads;
+  j["per_rank"] = per_rank;
+  j["imbalance"] = sum > 0 ? nlohmann::ordered_json(slowest / (sum / double(shares.size()))) : nlohmann::ordered_json();
+  j["tile_size"] = kTileSize;
+  j["tile_seconds"] = tile_seconds;
+  return j;
+}
 
 nlohmann::ordered_json warnings_section(const std::vector<WarningKind>& kinds) {
   nlohmann::ordered_json list = nlohmann::ordered_json::array();

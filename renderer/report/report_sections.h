@@ -11,6 +11,7 @@
 
 #include "accel/accel.h"
 #include "core/warning_log.h"
+#include "renderer/render/frame_split.h"
 #include "renderer/scene/scene.h"
 
 namespace kappa {
@@ -19,6 +20,13 @@ namespace kappa {
 /// the texture cache's statistics (OpenImageIO's own) and whether the
 /// OpenImageIO module was loaded at all.
 nlohmann::ordered_json images_section(const Scene& scene);
+
+/// A frame shared by processes (kappa-mpi): {ranks, threads_per_rank (a
+/// number, or one per rank where they differ), per_rank [{rank, host,
+/// threads, tiles, rays, time_s}], imbalance (the slowest rank's time over
+/// the mean, 1 when even; null with no time), tile_seconds [each tile's,
+/// by tile]}.
+nlohmann::ordered_json mpi_section(const std::vector<ProcessShare>& shares, const std::vector<double>& tile_seconds);
 
 /// The run's warnings by kind: [{kind, count, first}], in the order first
 /// seen (core/warning_log.h); the terminal showed only the first few of each.

@@ -4,7 +4,15 @@
 // than one rank. Skipped where kappa-mpi is not built (no MPI found).
 #include <gtest/gtest.h>
 
+#include <sched.h>
+#include <signal.h>
 #include <sys/wait.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <thread>
 
 #include <cstdlib>
 #include <nlohmann/json.hpp>
@@ -20,11 +28,11 @@ namespace {
 #ifdef KAPPA_MPI_BINARY
 /// mpirun -np `ranks` kappa-mpi `args`, as root where the sandbox is root,
 /// under a timeout (a hang fails with 124).
-test::RunResult run_mpi(int ranks, const std::vector<std::string>& args) {
+test::RunResult run_mpi(int ranks, const std::vector<std::string>& args, const std::string& mpirun_flags = "") {
   test::TempDir tmp;
   std::string cmd =
       "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_vader_single_copy_mechanism=none "
-      "OMPI_MCA_rmaps_base_oversubscribe=1 timeout 180 mpirun --oversubscribe -np " +
+      "OMPI_MCA_rmaps_base_oversubscribe=1 timeout 180 mpirun --oversubscribe " + mpirun_flags + " -np " +
       std::to_string(ranks) + " " + test::shell_quote(KAPPA_MPI_BINARY);
   for (const auto& a : args) cmd += " " + test::shell_quote(a);
   cmd += " </dev/null 2>" + test::shell_quote((tmp / "stderr").string()) + " >" +
@@ -99,8 +107,213 @@ TEST(MpiRender, OneTwoAndThreeRanksRenderTheOneProcessImageAndCountsBitwise) {
           << what << ", " << ranks << " ranks";
       EXPECT_EQ(report.value("stats", none), reference_report.value("stats", none)) << what << ", " << ranks << " ranks";
       if (setting[1] == "on") EXPECT_TRUE(report.value("rays", none).contains("camera")) << what;
+      // Who rendered what: every tile and ray once, one thread a rank.
+      const nlohmann::json& mpi = report["mpi"];
+      ASSERT_EQ(mpi["per_rank"].size(), std::size_t(ranks)) << report.dump(1);
+      EXPECT_EQ(mpi["ranks"], ranks);
+      EXPECT_EQ(mpi["threads_per_rank"], 1);
+      std::uint64_t tiles = 0, rays = 0;
+      for (int k = 0; k < ranks; ++k) {
+        const nlohmann::json& share = mpi["per_rank"][std::size_t(k)];
+        EXPECT_EQ(share["rank"], k);
+        EXPECT_FALSE(share["host"].get<std::string>().empty());
+        tiles += share["tiles"].get<std::uint64_t>();
+        rays += share["rays"].get<std::uint64_t>();
+        EXPECT_GT(share["time_s"].get<double>(), 0.0);
+      }
+      EXPECT_EQ(tiles, 30u);  // 96 x 72 in 16-pixel tiles: 6 x 5
+      EXPECT_EQ(rays, report["render"]["rays"].get<std::uint64_t>());
+      EXPECT_GE(mpi["imbalance"].get<double>(), 1.0);
     }
   }
+#endif
+}
+
+TEST(MpiRender, AccelAutoAndGridResModelBuildWhatTheWritingRankChose) {
+#ifndef KAPPA_MPI_BINARY
+  GTEST_SKIP() << "kappa-mpi is not built (CMake found no MPI)";
+#else
+  test::TempDir dir;
+  const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
+  // Statistics on: every rank's per-cell counts are summed cell by cell, so
+  // a rank that built another grid than rank 0 changes them (the images of
+  // the exact accelerators are the same whichever runs).
+  const std::vector<std::vector<std::string>> settings = {{"--accel", "auto"},
+                                                          {"--accel", "grid", "--grid-res", "model"}};
+  for (const auto& setting : settings) {
+    std::vector<std::string> common = {"render", scene, "--spp", "2", "--width", "64", "--height", "48",
+                                       "-q",     "--stats", "on", "--threads", "1"};
+    common.insert(common.end(), setting.begin(), setting.end());
+    const std::string what = setting.back();
+    auto args = common;
+    args.insert(args.end(), {"--out", (dir / "one.exr").string(), "--report", (dir / "one.json").string()});
+    const test::RunResult one = test::run_kappa(args);
+    ASSERT_EQ(one.exit_code, 0) << one.std_err;
+    const test::ExrFile reference = test::read_exr_file(dir / "one.exr");
+    const auto reference_report = nlohmann::json::parse(test::read_file(dir / "one.json"));
+    for (int ranks : {2, 3}) {
+      args = common;
+      args.insert(args.end(), {"--out", (dir / "k.exr").string(), "--report", (dir / "k.json").string()});
+      const test::RunResult r = run_mpi(ranks, args);
+      ASSERT_EQ(r.exit_code, 0) << what << ", " << ranks << " ranks: " << r.std_err;
+      EXPECT_TRUE(test::bitwise_equal(test::read_exr_file(dir / "k.exr").pixels, reference.pixels)) << what;
+      const auto report = nlohmann::json::parse(test::read_file(dir / "k.json"));
+      const nlohmann::json none;
+      EXPECT_EQ(report["accel"], reference_report["accel"]) << what;
+      EXPECT_EQ(report["render"]["settings"]["grid_res"], reference_report["render"]["settings"]["grid_res"]) << what;
+      const auto chosen = [](const nlohmann::json& j) {
+        return j.contains("accel_choice") && j["accel_choice"].is_object() ? j["accel_choice"]["chosen"] : nlohmann::json();
+      };
+      EXPECT_EQ(chosen(report), chosen(reference_report)) << what;
+      EXPECT_EQ(counts_of(report.value("rays", none)), counts_of(reference_report.value("rays", none)))
+          << what << ", " << ranks << " ranks";
+    }
+  }
+#endif
+}
+
+TEST(MpiRender, ABudgetedRenderIsTheOneProcessRenderBitwiseAndEveryRankTakesTheSamePasses) {
+#ifndef KAPPA_MPI_BINARY
+  GTEST_SKIP() << "kappa-mpi is not built (CMake found no MPI)";
+#else
+  test::TempDir dir;
+  const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
+  // A noise target decides its passes from the frame's estimate alone: the
+  // same on any number of ranks, each keeping every pixel's sums. Adaptive:
+  // the pixels below the target stop sampling, on every rank alike.
+  const std::vector<std::string> common = {"render", scene, "--width", "64", "--height", "48", "-q",
+                                           "--target-relmse", "0.005", "--adaptive", "--adaptive-min-spp", "8",
+                                           "--spp", "64", "--aov", "spp,albedo", "--threads", "1"};
+  auto args = common;
+  args.insert(args.end(), {"--stats", "on", "--out", (dir / "one.exr").string(), "--report", (dir / "one.json").string()});
+  const test::RunResult one = test::run_kappa(args);
+  ASSERT_EQ(one.exit_code, 0) << one.std_err;
+  const test::ExrFile reference = test::read_exr_file(dir / "one.exr");
+  const auto reference_report = nlohmann::json::parse(test::read_file(dir / "one.json"));
+  ASSERT_GT(reference_report["render"]["passes"].get<int>(), 2);
+  EXPECT_LT(reference_report["render"]["spp_min"].get<int>(), reference_report["render"]["spp_max"].get<int>());
+  for (int ranks : {2, 3}) {
+    args = common;
+    args.insert(args.end(), {"--stats", "on", "--out", (dir / "k.exr").string(), "--report", (dir / "k.json").string()});
+    const test::RunResult r = run_mpi(ranks, args);
+    ASSERT_EQ(r.exit_code, 0) << ranks << " ranks: " << r.std_err;
+    EXPECT_TRUE(test::bitwise_equal(test::read_exr_file(dir / "k.exr").pixels, reference.pixels)) << ranks << " ranks";
+    const auto report = nlohmann::json::parse(test::read_file(dir / "k.json"));
+    for (const char* key : {"passes", "spp", "spp_min", "spp_max", "spp_mean", "relmse_estimate", "stop_reason", "rays"})
+      EXPECT_EQ(report["render"][key], reference_report["render"][key]) << key << ", " << ranks << " ranks";
+    const nlohmann::json none;
+    EXPECT_EQ(counts_of(report.value("rays", none)), counts_of(reference_report.value("rays", none))) << ranks;
+    std::uint64_t tiles = 0;
+    for (const auto& share : report["mpi"]["per_rank"]) tiles += share["tiles"].get<std::uint64_t>();
+    EXPECT_EQ(tiles, 12u * report["render"]["passes"].get<std::uint64_t>());  // 4 x 3 tiles a pass
+  }
+  // A time budget: passes sized by rank 0's clock, taken by every rank. Every
+  // pixel has the frame's samples (the spp AOV), whichever rank drew them.
+  args = common;
+  args.erase(args.begin() + 7, args.begin() + 14);  // no noise target, no cap of 64
+  args.insert(args.end(), {"--time-budget", "2s", "--spp", "100000", "--stats", "off", "--out", (dir / "t.exr").string(),
+                           "--report", (dir / "t.json").string()});
+  const test::RunResult timed = run_mpi(2, args);
+  ASSERT_EQ(timed.exit_code, 0) << timed.std_err;
+  const auto report = nlohmann::json::parse(test::read_file(dir / "t.json"));
+  const int spp = report["render"]["spp"].get<int>();
+  EXPECT_GT(report["render"]["passes"].get<int>(), 1);
+  EXPECT_EQ(report["render"]["stop_reason"], "time-budget");
+  EXPECT_EQ(report["render"]["spp_min"], spp);
+  EXPECT_EQ(report["render"]["spp_max"], spp);
+  const test::ExrFile image = test::read_exr_file(dir / "t.exr");
+  const std::vector<float> samples = image.values("spp");
+  ASSERT_EQ(samples.size(), std::size_t(64 * 48));
+  for (std::size_t p = 0; p < samples.size(); ++p) ASSERT_EQ(samples[p], float(spp)) << "pixel " << p;
+#endif
+}
+
+TEST(MpiRender, ThreadsDefaultToTheHostsCoresSharedByItsRanks) {
+#ifndef KAPPA_MPI_BINARY
+  GTEST_SKIP() << "kappa-mpi is not built (CMake found no MPI)";
+#else
+  test::TempDir dir;
+  const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
+  cpu_set_t set;
+  ASSERT_EQ(sched_getaffinity(0, sizeof set, &set), 0);
+  const int cores = CPU_COUNT(&set);
+  // Unbound, each rank takes its share of the cores.
+  for (int ranks : {1, 2, 3}) {
+    const auto report_path = dir / ("r" + std::to_string(ranks) + ".json");
+    const test::RunResult r = run_mpi(ranks,
+                                      {"render", scene, "--spp", "1", "--width", "32", "--height", "32", "-q",
+                                       "--stats", "off", "--out", (dir / "a.exr").string(), "--report",
+                                       report_path.string()},
+                                      "--bind-to none");
+    ASSERT_EQ(r.exit_code, 0) << r.std_err;
+    const auto report = nlohmann::json::parse(test::read_file(report_path));
+    EXPECT_EQ(report["mpi"]["threads_per_rank"], std::max(1, cores / ranks)) << ranks << " ranks on " << cores << " cores";
+    EXPECT_EQ(report["render"]["threads"], std::max(1, cores / ranks));
+    EXPECT_EQ(r.std_err.find("--bind-to none"), std::string::npos) << r.std_err;
+  }
+  // Bound to one core (mpirun's default for one or two ranks), a rank alone
+  // on a host of more runs one thread and says how to give it its share.
+  if (cores > 1) {
+    const test::RunResult bound = run_mpi(1, {"render", scene, "--spp", "1", "--width", "32", "--height", "32", "-q",
+                                              "--stats", "off", "--out", (dir / "a.exr").string(), "--report",
+                                              (dir / "bound.json").string()},
+                                          "--bind-to core");
+    ASSERT_EQ(bound.exit_code, 0) << bound.std_err;
+    EXPECT_EQ(nlohmann::json::parse(test::read_file(dir / "bound.json"))["mpi"]["threads_per_rank"], 1);
+    EXPECT_NE(bound.std_err.find("--bind-to none"), std::string::npos) << bound.std_err;
+  }
+#endif
+}
+
+#ifdef KAPPA_MPI_BINARY
+/// The pid of the kappa-mpi process of rank `rank` whose command line holds
+/// `marker`, or 0.
+pid_t rank_process(int rank, const std::string& marker) {
+  const std::string rank_entry = "OMPI_COMM_WORLD_RANK=" + std::to_string(rank);
+  for (const auto& entry : std::filesystem::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::string cmdline = test::read_file(entry.path() / "cmdline"), environ = test::read_file(entry.path() / "environ");
+    std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
+    environ.push_back('\0');
+    if (cmdline.find("kappa-mpi") == std::string::npos || cmdline.find(marker) == std::string::npos) continue;
+    if (environ.find(rank_entry + '\0') != std::string::npos) return pid_t(std::stoi(name));
+  }
+  return 0;
+}
+#endif
+
+TEST(MpiRender, ARankKilledWhileRenderingEndsTheJobWithNothingWritten) {
+#ifndef KAPPA_MPI_BINARY
+  GTEST_SKIP() << "kappa-mpi is not built (CMake found no MPI)";
+#else
+  test::TempDir dir;
+  const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
+  const auto out = dir / "killed.exr", report = dir / "killed.json";
+  // Long enough to be killed in the middle (about a minute on one thread a rank).
+  test::RunResult r;
+  std::thread job([&] {
+    r = run_mpi(2, {"render", scene, "--spp", "4096", "--width", "256", "--height", "256", "-q", "--stats", "off",
+                    "--threads", "1", "--out", out.string(), "--report", report.string()});
+  });
+  // Rank 1 is killed two seconds after it is found: loaded, built and
+  // rendering (the Cornell box loads and builds in milliseconds).
+  pid_t victim = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline && (victim = rank_process(1, out.string())) == 0)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  if (victim != 0) {
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+    EXPECT_EQ(kill(victim, SIGKILL), 0);
+  }
+  job.join();
+  ASSERT_NE(victim, 0) << "rank 1 was not found rendering: " << r.std_err;
+  EXPECT_NE(r.exit_code, 0) << r.std_err;
+  EXPECT_NE(r.exit_code, 124) << "the job did not end: " << r.std_err;  // timeout's
+  // No image, no report, no temporary of either.
+  std::vector<std::string> left;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) left.push_back(entry.path().filename().string());
+  EXPECT_TRUE(left.empty()) << left.size() << " files left, the first " << (left.empty() ? "" : left[0]) << "\n" << r.std_err;
 #endif
 }
 
@@ -118,11 +331,11 @@ TEST(MpiRender, BadInputStopsEveryRankWithOneLine) {
   const test::RunResult option = run_mpi(2, {"render", scene, "--no-such-option"});
   EXPECT_EQ(option.exit_code, 2);
   EXPECT_EQ(kappa_lines(option.std_err), 1) << option.std_err;
-  // What a frame shared by ranks cannot do yet is refused before loading.
-  const test::RunResult budget = run_mpi(2, {"render", scene, "--stats", "off", "--time-budget", "1s",
-                                             "--out", (dir / "b.exr").string()});
-  EXPECT_EQ(budget.exit_code, 2);
-  EXPECT_EQ(kappa_lines(budget.std_err), 1) << budget.std_err;
+  // A bad value every rank reads alike, refused before loading.
+  const test::RunResult aov = run_mpi(2, {"render", scene, "--stats", "off", "--aov", "colour",
+                                          "--out", (dir / "b.exr").string()});
+  EXPECT_EQ(aov.exit_code, 2);
+  EXPECT_EQ(kappa_lines(aov.std_err), 1) << aov.std_err;
   EXPECT_FALSE(std::filesystem::exists(dir / "a.exr"));
   EXPECT_FALSE(std::filesystem::exists(dir / "b.exr"));
   EXPECT_TRUE(std::filesystem::is_empty(dir.path()));

@@ -34,7 +34,7 @@ class EveryKthTile final : public TileSchedule {
     handed.push_back(tile);
     return tile;
   }
-  void end_pass(Film&, std::span<double>, std::span<std::uint64_t>) override { ++ended; }
+  void end_pass(Film*, std::span<double>, std::span<std::uint64_t>) override { ++ended; }
 
   int begun = 0, ended = 0;
   std::vector<std::size_t> handed;
