@@ -5,13 +5,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/byte_size.h"
 #include "core/input_error.h"
 #include "core/parallel.h"
 #include "core/physical_memory.h"
+#include "renderer/render/tile_schedule.h"
 
 namespace kappa {
 
@@ -123,6 +126,21 @@ void FrameAccumulator::resolve(Film& film) const {
     for (std::size_t pixel = range.begin(); pixel != range.end(); ++pixel)
       resolve_pixel(film, pixel, m_samples[pixel], m_aovs.empty() ? kNone : m_aovs[pixel]);
   });
+}
+
+void share_pass_state(TileSchedule& schedule, FrameAccumulator& acc, int width, int height) {
+  static_assert(std::is_trivially_copyable_v<PixelSamples> && std::is_trivially_copyable_v<PixelAovSums>);
+  const std::size_t aov_bytes = acc.has_aovs() ? sizeof(PixelAovSums) : 0;
+  schedule.share_pass_state(
+      width, height, sizeof(PixelSamples) + aov_bytes,
+      [&](std::size_t pixel, std::byte* out) {
+        std::memcpy(out, &acc.samples(pixel), sizeof(PixelSamples));
+        if (aov_bytes) std::memcpy(out + sizeof(PixelSamples), &acc.aov_sums(pixel), aov_bytes);
+      },
+      [&](std::size_t pixel, const std::byte* in) {
+        std::memcpy(&acc.samples(pixel), in, sizeof(PixelSamples));
+        if (aov_bytes) std::memcpy(&acc.aov_sums(pixel), in + sizeof(PixelSamples), aov_bytes);
+      });
 }
 
 }  // namespace kappa

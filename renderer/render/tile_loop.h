@@ -12,9 +12,7 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstring>
 #include <memory>
-#include <type_traits>
 #include <vector>
 
 #include "core/check.h"
@@ -27,23 +25,6 @@
 #include "renderer/render/tile_schedule.h"
 
 namespace kappa {
-
-/// A progressive frame shared by processes: the pass's pixels rendered
-/// elsewhere, their samples and AOV sums, into this process's `acc`.
-inline void share_pass_state(TileSchedule& schedule, FrameAccumulator& acc, int width, int height) {
-  static_assert(std::is_trivially_copyable_v<PixelSamples> && std::is_trivially_copyable_v<PixelAovSums>);
-  const std::size_t aov_bytes = acc.has_aovs() ? sizeof(PixelAovSums) : 0;
-  schedule.share_pass_state(
-      width, height, sizeof(PixelSamples) + aov_bytes,
-      [&](std::size_t pixel, std::byte* out) {
-        std::memcpy(out, &acc.samples(pixel), sizeof(PixelSamples));
-        if (aov_bytes) std::memcpy(out + sizeof(PixelSamples), &acc.aov_sums(pixel), aov_bytes);
-      },
-      [&](std::size_t pixel, const std::byte* in) {
-        std::memcpy(&acc.samples(pixel), in, sizeof(PixelSamples));
-        if (aov_bytes) std::memcpy(&acc.aov_sums(pixel), in + sizeof(PixelSamples), aov_bytes);
-      });
-}
 
 /// The tile loop, for one choice of queries. `make_queries` gives a thread
 /// its Queries object for a tile.

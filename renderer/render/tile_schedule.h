@@ -16,6 +16,7 @@
 namespace kappa {
 
 struct Film;
+class FrameAccumulator;
 
 /// A frame's tiles are squares of this many pixels a side (the last row and
 /// column cut by the film's edges), numbered row by row.
@@ -53,5 +54,11 @@ class TileSchedule {
   /// statistics, 64-bit); called by all at the same point, with as many.
   virtual void sum_on_writer(std::span<std::uint64_t> /*values*/) {}
 };
+
+/// A progressive frame shared by processes: the pass's pixels rendered
+/// elsewhere, their samples and AOV sums, into this process's `acc`
+/// (frame_accumulator.cpp: out of the tile loop, whose body the compiler
+/// inlines whole).
+void share_pass_state(TileSchedule& schedule, FrameAccumulator& acc, int width, int height);
 
 }  // namespace kappa
