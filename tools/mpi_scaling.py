@@ -12,10 +12,11 @@ simulation replays what renderer/mpi/mpi_frame_split.cpp does, pass by pass
 as one pass of those costs:
 
 - rank 0 hands out tiles one at a time in tile order (its own threads take
-  theirs with no message); a thread of another rank asks for each tile with a
-  message and waits for the answer (a round trip: 2 latencies), its rank's
-  threads taking turns (one request in flight a rank), rank 0's coordinator
-  answering one request at a time (`--service` seconds each);
+  theirs with no message); another rank keeps one request in flight: when a
+  thread of it takes a tile (the answer to the last request, waited for if it
+  has not arrived: a round trip, 2 latencies), the next request leaves, to be
+  answered while that tile renders; rank 0's coordinator answers one request
+  at a time (`--service` seconds each);
 - after the pass every other rank sends its tiles' pixels (every channel,
   4 bytes a float) to rank 0, which receives them one rank after another at
   `--bandwidth` bytes a second, each message a latency more.
@@ -51,35 +52,49 @@ def tile_pixels(width, height, size):
 
 def simulate(costs, pixels, ranks, threads, latency, bandwidth, service, bytes_per_pixel):
     """(frame seconds, imbalance) of one pass of `costs` on `ranks` x `threads`."""
-    next_tile = 0
-    coordinator_free = 0.0       # when rank 0's coordinator can answer the next request
-    rank_free = [0.0] * ranks    # when a rank's next request may leave (one in flight)
+    state = {"next": 0, "coordinator_free": 0.0}
+
+    def ask(leave):
+        """A request leaving a rank at `leave`: (tile or None, when its answer arrives)."""
+        answered = max(leave + latency, state["coordinator_free"]) + service
+        state["coordinator_free"] = answered
+        tile = state["next"] if state["next"] < len(costs) else None
+        state["next"] += tile is not None
+        return tile, answered + latency
+
+    pending = [None] * ranks     # a rank's request in flight: (tile, arrival)
     busy = [0.0] * ranks
     sent_pixels = [0] * ranks
-    # Threads ready to take a tile: (time, rank, thread).
-    ready = [(0.0, r, k) for r in range(ranks) for k in range(threads)]
-    heapq.heapify(ready)
+    # Events in time order: (time, kind, rank, thread); at one time, the
+    # threads' first takes (kind 0), then requests leaving (1), then threads
+    # done with a tile (2), as the messages would queue at rank 0.
+    events = [(0.0, 0, r, k) for r in range(ranks) for k in range(threads)]
+    heapq.heapify(events)
     finish = 0.0
-    while ready:
-        t, r, k = heapq.heappop(ready)
-        if r == 0:
-            start = t
-        else:
-            leave = max(t, rank_free[r])
-            answered = max(leave + latency, coordinator_free) + service
-            coordinator_free = answered
-            start = answered + latency
-            rank_free[r] = start
-        if next_tile >= len(costs):
-            finish = max(finish, start if r else t)
+    while events:
+        t, kind, r, k = heapq.heappop(events)
+        if kind == 1:
+            pending[r] = ask(t)
             continue
-        tile = next_tile
-        next_tile += 1
+        if r == 0:  # rank 0's threads take the next tile with no message
+            tile, start = (state["next"], t) if state["next"] < len(costs) else (None, t)
+            state["next"] += tile is not None
+        else:
+            # The answer to the request in flight (the first: asked now),
+            # then the next request, answered while this tile renders.
+            tile, arrival = pending[r] if pending[r] else ask(t)
+            pending[r] = None
+            start = max(t, arrival)
+            if tile is not None:
+                heapq.heappush(events, (start, 1, r, k))
+        if tile is None:
+            finish = max(finish, start)
+            continue
         end = start + costs[tile]
         busy[r] += costs[tile]
         sent_pixels[r] += pixels[tile]
         finish = max(finish, end)
-        heapq.heappush(ready, (end, r, k))
+        heapq.heappush(events, (end, 2, r, k))
     # The gather: rank 0 receives the other ranks' pixels one rank after another.
     gather = sum(latency + sent_pixels[r] * bytes_per_pixel / bandwidth for r in range(1, ranks))
     mean = sum(busy) / ranks

@@ -67,6 +67,9 @@ class MpiFrameSplit final : public FrameSplit {
   std::atomic<std::size_t> m_next{0};  // rank 0: the next of m_order to hand out
   std::mutex m_mutex;                  // a request and its answer; m_mine
   bool m_exhausted = false;            // other ranks: rank 0 has no tile left
+  bool m_asked = false;                // other ranks: a request is out, its answer to come in m_answer
+  long long m_answer = -1;
+  MPI_Request m_answer_request = MPI_REQUEST_NULL;
   std::vector<std::size_t> m_mine;     // the tiles this rank rendered, as handed out
   std::thread m_coordinator;
   std::string m_host;                            // MPI_Get_processor_name

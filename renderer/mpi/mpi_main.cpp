@@ -47,8 +47,9 @@ auto without_stderr(bool silent, Fn&& fn) {
 /// that host (MPI_COMM_TYPE_SHARED), at least one, within the cores the
 /// rank may run on. mpirun binds each rank to one core by default (Open
 /// MPI 4 with 2 ranks or fewer), which leaves a rank alone on its host one
-/// thread: said once, with the flag that gives it its share.
-int default_threads_per_rank(int rank) {
+/// thread: said once (`warn`: the default is used), with the flag that
+/// gives it its share.
+int default_threads_per_rank(int rank, bool warn) {
   MPI_Comm host;
   int ranks_here = 1;
   if (MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &host) == MPI_SUCCESS) {
@@ -58,7 +59,7 @@ int default_threads_per_rank(int rank) {
   const long host_cores = std::max(1L, sysconf(_SC_NPROCESSORS_ONLN));
   const int share = std::max(1, int(host_cores / std::max(1, ranks_here)));
   const int usable = tbb::this_task_arena::max_concurrency();  // the affinity mask's cores
-  if (usable < share)
+  if (warn && usable < share)
     kappa::warning_log().add("kappa-mpi: rank " + std::to_string(rank) + " may run on " + std::to_string(usable) +
                              " core(s), fewer than its share of its host's " + std::to_string(host_cores) +
                              " (mpirun binds ranks to cores by default): run mpirun --bind-to none, or --map-by "
@@ -101,7 +102,7 @@ int main(int argc, char** argv) {
     return finish(*code);
   auto* render = std::get_if<kappa::RenderOptions>(&command);
   // Called by every rank (a collective), whatever the command.
-  const int threads_per_rank = default_threads_per_rank(rank);
+  const int threads_per_rank = default_threads_per_rank(rank, render && render->threads == 0);
   if (render && render->threads == 0) render->threads = threads_per_rank;
   if (ranks > 1 && !render) {
     if (rank == 0)
