@@ -10,10 +10,9 @@
 #include <unistd.h>
 
 #include <algorithm>
-
 #include <csignal>
-#include <string>
 #include <cstdio>
+#include <string>
 #include <variant>
 
 #include "core/warning_log.h"
