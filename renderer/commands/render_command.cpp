@@ -279,6 +279,7 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
                                   " frame", 0);
   // The last step every process agrees on before the tiles go out.
   Film film = agreed_step(split, [&] { return Film(scene.width, scene.height, aov); });
+  if (split) split->rendering_begins();
   ProgressBar bar(show_progress);
   begin_phase(bar.task(), "rendering", 0);
   RenderResult result;

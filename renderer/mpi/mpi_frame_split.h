@@ -39,8 +39,9 @@ class MpiFrameSplit final : public FrameSplit {
   std::vector<ProcessShare> shares() const override { return m_shares; }
   std::vector<double> tile_seconds() const override { return m_tile_seconds_sum; }
 
-  /// A pass has begun: from here a rank that fails cannot meet the others at
-  /// an agreement, and the job must end (MPI_Abort).
+  void rendering_begins() override { m_rendering = true; }
+  /// Past the last agreement: from here a rank that fails cannot meet the
+  /// others at one, and the job must end (MPI_Abort).
   bool rendering() const { return m_rendering; }
   /// Tiles this rank rendered in the last pass.
   std::size_t tiles_rendered() const { return m_mine.size(); }

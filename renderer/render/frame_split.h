@@ -39,6 +39,9 @@ class FrameSplit : public TileSchedule {
   virtual bool all_succeeded(bool succeeded) = 0;
   /// Whether the writer's step succeeded, at the last all_succeeded.
   virtual bool writer_succeeded() const = 0;
+  /// Past the last agreement (the film): from here a process that fails
+  /// cannot tell the others at one, and the frame must end for all.
+  virtual void rendering_begins() = 0;
   /// The writer's `text` (a choice it made for all: the accelerator `auto`
   /// chose, the resolution `--grid-res model` chose), on every process;
   /// called by all at the same point.

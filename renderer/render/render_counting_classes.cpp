@@ -3,6 +3,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <memory>
+#include <vector>
 
 #include "renderer/render/queries.h"
 #include "stats/query_clock.h"
@@ -20,6 +21,12 @@ RenderResult render_counting_classes(const Scene& scene, const Accelerator& acce
                                      [&] { return ClassQueries(accel, per_thread.local()); });
   auto merged = std::make_shared<RenderCounters>(0, Vec3d{}, false, lobes);
   for (const RenderCounters& c : per_thread) merged->merge(c);
+  if (TileSchedule* const split = settings.tiles) {
+    // Every process's counts, summed into the writer's (render_counting.h).
+    std::vector<std::uint64_t> flat = merged->flatten();
+    split->sum_on_writer(flat);
+    merged->assign(flat);
+  }
   result.counters = merged;
   return result;
 }

@@ -70,11 +70,12 @@ TEST(MpiRender, OneTwoAndThreeRanksRenderTheOneProcessImageAndCountsBitwise) {
   // 6 x 5 tiles, the last row and column cut; the default accelerator
   // (grid2, its occluder cache per tile). Statistics off with the geometric
   // AOVs; on, with the cost AOV, every path counted per cell (the Cornell
-  // box's few cells) and 1 path in 4.
+  // box's few cells) and 1 path in 4; on, with naive (counted per class only).
   const std::vector<std::vector<std::string>> settings = {
       {"--stats", "off", "--aov", "albedo,normal,depth"},
       {"--stats", "on", "--aov", "cost"},
-      {"--stats", "on", "--cell-sample", "4"}};
+      {"--stats", "on", "--cell-sample", "4"},
+      {"--stats", "on", "--accel", "naive"}};  // per class only: an accelerator without cells
   for (const auto& setting : settings) {
     std::vector<std::string> common = {"render", scene, "--spp", "4", "--width", "96", "--height", "72", "-q"};
     common.insert(common.end(), setting.begin(), setting.end());
