@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <thread>
+#include <utility>
 
 #include <cstdlib>
 #include <nlohmann/json.hpp>
@@ -52,6 +53,15 @@ int kappa_lines(const std::string& text) {
 }
 #endif
 
+/// build/kappa `args` into `dir`: the image and report kappa-mpi's are compared with.
+std::pair<test::ExrFile, nlohmann::json> render_one_process(const std::filesystem::path& dir,
+                                                            std::vector<std::string> args) {
+  args.insert(args.end(), {"--out", (dir / "one.exr").string(), "--report", (dir / "one.json").string()});
+  const test::RunResult one = test::run_kappa(args);
+  EXPECT_EQ(one.exit_code, 0) << one.std_err;
+  return {test::read_exr_file(dir / "one.exr"), nlohmann::json::parse(test::read_file(dir / "one.json"))};
+}
+
 /// A report's section without its times (which differ run to run), at any depth.
 nlohmann::json counts_of(nlohmann::json section) {
   if (section.is_object()) {
@@ -80,12 +90,8 @@ TEST(MpiRender, OneTwoAndThreeRanksRenderTheOneProcessImageAndCountsBitwise) {
     std::vector<std::string> common = {"render", scene, "--spp", "4", "--width", "96", "--height", "72", "-q"};
     common.insert(common.end(), setting.begin(), setting.end());
     const std::string what = setting[1] + " " + setting[3];
+    const auto [reference, reference_report] = render_one_process(dir.path(), common);
     auto args = common;
-    args.insert(args.end(), {"--out", (dir / "one.exr").string(), "--report", (dir / "one.json").string()});
-    const test::RunResult one = test::run_kappa(args);
-    ASSERT_EQ(one.exit_code, 0) << one.std_err;
-    const test::ExrFile reference = test::read_exr_file(dir / "one.exr");
-    const auto reference_report = nlohmann::json::parse(test::read_file(dir / "one.json"));
     for (int ranks : {1, 2, 3}) {
       const std::string name = "ranks" + std::to_string(ranks);
       args = common;
@@ -146,12 +152,8 @@ TEST(MpiRender, AccelAutoAndGridResModelBuildWhatTheWritingRankChose) {
                                        "-q",     "--stats", "on", "--threads", "1"};
     common.insert(common.end(), setting.begin(), setting.end());
     const std::string what = setting.back();
+    const auto [reference, reference_report] = render_one_process(dir.path(), common);
     auto args = common;
-    args.insert(args.end(), {"--out", (dir / "one.exr").string(), "--report", (dir / "one.json").string()});
-    const test::RunResult one = test::run_kappa(args);
-    ASSERT_EQ(one.exit_code, 0) << one.std_err;
-    const test::ExrFile reference = test::read_exr_file(dir / "one.exr");
-    const auto reference_report = nlohmann::json::parse(test::read_file(dir / "one.json"));
     for (int ranks : {2, 3}) {
       args = common;
       args.insert(args.end(), {"--out", (dir / "k.exr").string(), "--report", (dir / "k.json").string()});
