@@ -70,6 +70,12 @@ void add_render_flags(CLI::App& render, RenderOptions& o, bool converge) {
     render.add_option("--adaptive-min-spp", o.adaptive_min_spp, "samples a pixel takes before --adaptive may stop it")
         ->check(CLI::Range(1, 1 << 20))
         ->capture_default_str();
+    render.add_option("--checkpoint-every", o.checkpoint_every,
+                      "render in passes and save the completed ones beside the image (IMAGE.checkpoint) this often: "
+                      "a number and a unit, 30s, 10m, 1h");
+    render.add_flag("--resume", o.resume,
+                    "go on from the image's checkpoint (the same scene and settings), to the image a render not "
+                    "stopped makes");
   }
   render.add_option("--max-depth", o.max_depth, "bounces after the camera ray (1 = direct lighting)")
       ->check(CLI::Range(0, 1 << 20))
@@ -289,6 +295,7 @@ std::optional<int> parse_command_line(int argc, char** argv, Command& command) {
     render_options.adaptive_min_spp_given = render->count("--adaptive-min-spp") > 0;
     render_options.time_budget_given = render->count("--time-budget") > 0;
     render_options.target_relmse_given = render->count("--target-relmse") > 0;
+    render_options.checkpoint_every_given = render->count("--checkpoint-every") > 0;
     command = std::move(render_options);
   }
   else if (bench->parsed()) command = std::move(bench_options);

@@ -28,6 +28,9 @@ struct RenderOptions {
   bool adaptive = false;        ///< --adaptive: converged pixels stop sampling
   int adaptive_min_spp = 16;    ///< --adaptive-min-spp
   bool adaptive_min_spp_given = false;
+  std::string checkpoint_every;  ///< --checkpoint-every: save the completed passes this often ("10m")
+  bool checkpoint_every_given = false;
+  bool resume = false;          ///< --resume: go on from the image's checkpoint
   int max_depth = 32;           ///< bounces after the camera ray
   int rr_depth = 5;             ///< Russian roulette from this bounce on (the most efficient: docs/command-line.md)
   bool no_rr = false;           ///< disable Russian roulette

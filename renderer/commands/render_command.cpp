@@ -6,7 +6,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <exception>
 #include <fstream>
+#include <iterator>
 #include <chrono>
 #include <optional>
 #include <cstdio>
@@ -26,12 +28,14 @@
 #include "renderer/cli/render_settings.h"
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/cell_map.h"
+#include "renderer/io/checkpoint_file.h"
 #include "renderer/io/preview.h"
 #include "renderer/io/exr_output.h"
 #include "renderer/io/output_guard.h"
 #include "renderer/io/output_target.h"
 #include "renderer/render/accel_choice.h"
 #include "renderer/render/frame_accumulator.h"
+#include "renderer/render/frame_progress.h"
 #include "renderer/render/frame_split.h"
 #include "renderer/render/integrator.h"
 #include "renderer/render/sampler_kind.h"
@@ -100,7 +104,12 @@ Budget budget_of(const RenderOptions& options) {
   budget.adaptive = options.adaptive;
   budget.adaptive_min_spp = options.adaptive_min_spp;
   if (options.spp_given) budget.spp_cap = options.spp;
-  if (budget.any() && needs_total(parse_sampler(options.sampler)))
+  if (options.checkpoint_every_given)
+    budget.longest_pass_s = parse_duration(options.checkpoint_every, "--checkpoint-every");
+  // Checkpoints (and a resume) make a render of --spp progressive: its
+  // passes end at --spp as the one pass would.
+  if (!budget.any() && (options.checkpoint_every_given || options.resume)) budget.spp_cap = options.spp;
+  if ((budget.any() || options.checkpoint_every_given || options.resume) && needs_total(parse_sampler(options.sampler)))
     throw InputError("--sampler " + options.sampler +
                      ": needs the samples per pixel in advance, which a budget decides as it goes (use independent or sobol)");
   return budget;
@@ -164,6 +173,29 @@ FrameAccelerator build_as_the_writer_chooses(FrameSplit& split, const Scene& sce
   return {make_accelerator(chosen.accel, scene.triangles, chosen.build, progress), {}, nullptr};
 }
 
+/// The settings a checkpoint must have been made with to be resumed here:
+/// the render record's, which decide the image and the counts, less the
+/// scene's path (its inputs' hash stands for it, wherever it is run from)
+/// and the time budget (a resumed render may be given more time), and the
+/// camera.
+nlohmann::ordered_json checkpoint_settings(const RenderOptions& options, const Scene& scene, const Accelerator& accel,
+                                           const Budget& budget) {
+  nlohmann::ordered_json settings = to_json(render_record(options, scene, resolution_text(accel), options.spp, budget));
+  settings.erase("scene");
+  settings.erase("time_budget");
+  settings["camera"] = options.camera;
+  return settings;
+}
+
+/// A file's bytes, or InputError saying why not.
+std::string read_bytes(const std::filesystem::path& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(what + ": cannot read " + path.string() + " (a render with --checkpoint-every saves it)");
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(what + ": cannot read " + path.string());
+  return bytes;
+}
+
 /// The outputs a render claims before it renders (the writer's only).
 struct ClaimedOutputs {
   std::unique_ptr<AtomicOutput> image, report, cell_map, preview;
@@ -219,7 +251,14 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
   const std::filesystem::path out_path = output_path(options, scene, writer);
   std::vector<std::filesystem::path> inputs = scene.inputs;
   inputs.push_back(calibration_path);
-  refuse_outputs_over_inputs({out_path, options.report, options.cell_map, options.preview}, inputs);
+  const bool checkpoints = options.checkpoint_every_given || options.resume;
+  if (checkpoints && (options.out == "-" || leads_to_stream(out_path.string())))
+    throw InputError(std::string(options.resume ? "--resume" : "--checkpoint-every") +
+                     ": needs the image to be a file (its checkpoint is kept beside it)");
+  const std::filesystem::path checkpoint_file = checkpoint_path(out_path);
+  refuse_outputs_over_inputs({out_path, options.report, options.cell_map, options.preview,
+                              checkpoints ? checkpoint_file.string() : std::string()},
+                             inputs);
   // Claimed by the writer alone; every process waits for its verdict.
   ClaimedOutputs claimed = agreed_step(split, [&] {
     ClaimedOutputs c;
@@ -287,7 +326,7 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
   // Alive until the outputs are committed: a first Ctrl-C while a finished
   // budgeted render writes its outputs lets them be written too.
   std::optional<InterruptGuard> guard;
-  if (budget.any()) {
+  if (budget.any() || checkpoints) {
     // Passes until a budget is spent; Ctrl-C abandons the pass in progress
     // and keeps the completed ones (interrupt.h). The progress line shows
     // the budget's share spent: the time's, or the estimate's (which falls
@@ -312,10 +351,61 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
                           if (budget.target_relmse > 0 && state.spp >= kFirstRelmseCheckSpp && state.relmse_estimate > 0)
                             share = std::max(share, budget.target_relmse / state.relmse_estimate);
                           bar.update(std::size_t(std::clamp(share, 0.0, 1.0) * 1000), 1000);
-                        }};
+}};
+    // --resume: the checkpoint, read by the writer and sent to the others
+    // (which may not see its folder), for the settings of this render.
+    const nlohmann::ordered_json fingerprint = checkpoint_settings(options, scene, *accel, budget);
+    std::optional<FrameProgress> resumed;
+    if (options.resume) {
+      resumed = agreed_step(split, [&] {
+        std::string bytes;
+        std::exception_ptr failure;  // the writer's, after it has sent the others nothing
+        try {
+          if (writer) bytes = read_bytes(checkpoint_file, "--resume");
+        } catch (...) {
+          failure = std::current_exception();
+        }
+        if (shared_frame) bytes = split->writer_text(bytes);
+        if (failure) std::rethrow_exception(failure);
+        if (bytes.empty() && !writer) throw InputError("--resume: the writing rank read no checkpoint");
+        return decode_checkpoint(bytes, checkpoint_file.string(), fingerprint, film.pixels(),
+                                 aov.albedo || aov.normal || aov.depth || aov.cost);
+      });
+      if (!writer) {  // the counts are the writer's to add, once
+        resumed->rays = resumed->nonfinite = 0;
+        resumed->counters.clear();
+      }
+      control.resume = &*resumed;
+    }
+    // --checkpoint-every: the completed passes, saved by the writer when the
+    // time has come since the last (or the start), beside the image.
+    int saved = 0;
+    if (options.checkpoint_every_given) {
+      auto last = std::chrono::steady_clock::now();
+      control.checkpoint_due = [&, last]() mutable {
+        const auto now = std::chrono::steady_clock::now();
+        if (std::chrono::duration<double>(now - last).count() < budget.longest_pass_s) return false;
+        last = now;
+        return true;
+      };
+      control.checkpoint = [&](const FrameProgress& progress) {
+        if (!writer) return;
+        try {
+          AtomicOutput out(checkpoint_file, OutputKind::text);
+          write_temporary(out, encode_checkpoint(fingerprint, progress));
+          out.commit();
+          ++saved;
+        } catch (const std::exception& e) {
+          warning_log().add(checkpoint_file.string() + ": checkpoint not saved, the render goes on: " + e.what());
+        }
+      };
+    }
     settings.passes = &control;
     settings.tiles = split;  // with one process too: the report's mpi section
     result = render(scene, *accel, settings, film);
+    result.checkpoints_saved = saved;
+    result.resumed_passes = resumed ? resumed->passes : 0;
+    result.resumed_rays = resumed ? resumed->rays : 0;
     interrupted = result.interrupted || (guard && guard->interrupted());
     if (interrupted && !result.interrupted) {
       // Ctrl-C after the last pass's last sample: its passes are complete,
@@ -385,6 +475,14 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
     if (preview_out) preview_out->commit();
     if (report_out) report_out->commit();
   }
+  // A finished render's checkpoint has served; an interrupted one's is kept
+  // (its image has the completed passes, the checkpoint the passes to go on from).
+  // The writer's alone: it saved it, and only once its outputs are committed.
+  if (checkpoints && !interrupted && writer) {
+    std::error_code ec;
+    std::filesystem::remove(checkpoint_file, ec);
+    if (ec) warning_log().add(checkpoint_file.string() + ": the finished render's checkpoint was not removed: " + ec.message());
+  }
 
   if (!options.quiet) {
     if (const CellLayout* cells = accel->cells()) {
@@ -398,7 +496,7 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
     std::fprintf(stderr, "kappa: %s %dx%d, %d spp, %s, %d threads: %.2f s, %llu rays, %.3g Mrays/s%s -> %s\n",
                  scene.name.c_str(), scene.width, scene.height, result.spp, std::string(accel->name()).c_str(), threads,
                  result.seconds, static_cast<unsigned long long>(result.rays),
-                 result.seconds > 0 ? double(result.rays) / result.seconds * 1e-6 : 0.0,
+                 result.seconds > 0 ? double(result.rays - result.resumed_rays) / result.seconds * 1e-6 : 0.0,
                  traversal_summary(report["cost"]).c_str(), output.target().c_str());
     std::fflush(stderr);
     std::fputs(stats_table(report).c_str(), stdout);

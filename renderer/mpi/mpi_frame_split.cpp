@@ -351,7 +351,11 @@ std::uint64_t MpiFrameSplit::writer_value(std::uint64_t value) {
 std::string MpiFrameSplit::writer_text(const std::string& text) {
   std::string out = text;
   out.resize(std::size_t(writer_value(text.size())));
-  check(MPI_Bcast(out.data(), int(out.size()), MPI_CHAR, 0, m_comm), "MPI_Bcast");
+  // In pieces of at most 2^30 bytes: MPI counts are ints (a checkpoint of a
+  // large frame is gigabytes).
+  constexpr std::size_t kPiece = std::size_t(1) << 30;
+  for (std::size_t at = 0; at < out.size(); at += kPiece)
+    check(MPI_Bcast(out.data() + at, int(std::min(kPiece, out.size() - at)), MPI_CHAR, 0, m_comm), "MPI_Bcast");
   return out;
 }
 

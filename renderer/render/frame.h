@@ -20,6 +20,8 @@
 
 namespace kappa {
 
+struct FrameProgress;  // frame_progress.h, which reads PassControl
+
 /// A progressive render's control (render_command.cpp, tests). Without one
 /// a frame is one pass of RenderSettings::spp.
 struct PassControl {
@@ -27,6 +29,15 @@ struct PassControl {
   const std::atomic<bool>* interrupt = nullptr;  ///< once set, the pass in progress is abandoned
   /// After each completed pass, with the passes so far (for a progress line).
   std::function<void(const FrameState&, int)> on_pass;
+  /// --checkpoint-every: asked after each completed pass whether a
+  /// checkpoint is due (with processes sharing the frame, the writer's
+  /// answer is every one's); given the frame so far when one is.
+  std::function<bool()> checkpoint_due = nullptr;
+  std::function<void(const FrameProgress&)> checkpoint = nullptr;
+  /// --resume: the passes a checkpoint saved, to begin from (with
+  /// processes sharing the frame, each has the pixels; only the writer's
+  /// has the counts and counters, which the others would add again).
+  const FrameProgress* resume = nullptr;
 };
 
 struct RenderSettings {
@@ -70,6 +81,9 @@ struct RenderResult {
   std::uint64_t nonfinite_samples = 0;  ///< non-finite radiance samples, dropped from their pixel
   int spp = 0;                       ///< the completed passes' samples per pixel (the most any pixel took)
   int passes = 0;                    ///< completed passes
+  int resumed_passes = 0;            ///< of them, those a checkpoint brought (--resume)
+  std::uint64_t resumed_rays = 0;    ///< of `rays`, those a checkpoint brought
+  int checkpoints_saved = 0;         ///< --checkpoint-every: checkpoints this run saved
   bool interrupted = false;          ///< a pass was abandoned: the film holds the passes before it
   double relmse_estimate = 0;        ///< FrameAccumulator::relmse_estimate of the film
   SppSpread spp_spread;              ///< samples per pixel, min, mean and max

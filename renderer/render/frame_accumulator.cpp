@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/byte_size.h"
+#include "core/check.h"
 #include "core/input_error.h"
 #include "core/parallel.h"
 #include "core/physical_memory.h"
@@ -74,6 +75,19 @@ std::size_t FrameAccumulator::retire_converged(double target, std::uint32_t min_
   });
   for (std::size_t n : retired) m_active_count -= n;
   return m_active_count;
+}
+
+void FrameAccumulator::restore(std::vector<PixelSamples> samples, std::vector<PixelAovSums> aovs,
+                               std::vector<std::uint8_t> active) {
+  KAPPA_CHECK_EQ(samples.size(), m_samples.size());
+  KAPPA_CHECK_EQ(aovs.size(), m_aovs.size());
+  KAPPA_CHECK(active.empty() || active.size() == m_samples.size());
+  m_samples = std::move(samples);
+  m_aovs = std::move(aovs);
+  m_active = std::move(active);
+  m_active_count = m_active.empty() ? m_samples.size()
+                                    : std::size_t(std::count_if(m_active.begin(), m_active.end(),
+                                                                [](std::uint8_t a) { return a != 0; }));
 }
 
 double FrameAccumulator::relmse_estimate() const {

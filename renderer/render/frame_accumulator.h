@@ -67,6 +67,15 @@ class FrameAccumulator {
   /// Writes every selected channel of `film` from the sums so far.
   void resolve(Film& film) const;
 
+  /// Every pixel's sums and which still sample (empty: all), as a
+  /// checkpoint keeps them (frame_progress.h).
+  const std::vector<PixelSamples>& all_samples() const { return m_samples; }
+  const std::vector<PixelAovSums>& all_aov_sums() const { return m_aovs; }
+  const std::vector<std::uint8_t>& all_active() const { return m_active; }
+  /// Back to a checkpoint's sums: each array of this frame's size (aov
+  /// sums only when it keeps them; active empty or one a pixel).
+  void restore(std::vector<PixelSamples> samples, std::vector<PixelAovSums> aovs, std::vector<std::uint8_t> active);
+
  private:
   std::vector<PixelSamples> m_samples;
   std::vector<PixelAovSums> m_aovs;

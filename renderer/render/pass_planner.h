@@ -21,6 +21,10 @@ struct Budget {
   double target_relmse = 0;    ///< --target-relmse (0: none)
   bool adaptive = false;       ///< pixels below the target stop sampling (needs a target)
   int adaptive_min_spp = 16;
+  /// --checkpoint-every: a render saves its completed passes this often, so
+  /// without a noise target (whose passes its estimate sizes, the same in
+  /// every run) a pass lasts about this long at most (0: no limit).
+  double longest_pass_s = 0;
 
   bool any() const { return time_s > 0 || target_relmse > 0; }
 };
@@ -57,6 +61,11 @@ class PassPlanner {
   const std::string& stop_reason() const { return m_stop_reason; }
   /// Seconds since the first pass began.
   double elapsed() const;
+  /// A render resumed from a checkpoint: `elapsed_s` of its time budget
+  /// already spent. Its next pass is sized as a first one where time sizes
+  /// passes (one sample: the speed is learnt again), as in a run not
+  /// stopped where the estimate alone does.
+  void resume(double elapsed_s);
 
  private:
   int stop(const char* reason);
@@ -67,6 +76,8 @@ class PassPlanner {
   double m_pass_start = 0;
   double m_last_pass_work = 0;  ///< pixel-samples of the last pass
   bool m_started = false;
+  bool m_learning = false;      ///< a resumed render's first pass: the speed is unknown
+  double m_resumed_s = 0;       ///< the time budget spent before a resume
   std::string m_stop_reason;
 };
 

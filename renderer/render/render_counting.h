@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/thread_limit.h"
+#include "renderer/render/frame_progress.h"
 #include "renderer/render/frames.h"
 #include "renderer/render/queries.h"
 #include "renderer/render/tile_loop.h"
@@ -34,6 +35,17 @@ RenderResult render_counting_with(const Scene& scene, const Walker& grid, const 
   const bool lobes = scene.has_materials();
   const std::uint64_t sets = lobes ? kCountedSets : kRenderClasses;
   PerCellPlan plan = plan_per_cell(n, sets, std::uint64_t(active_threads()), asked, grid.bytes(), settings.stats_max_bytes);
+  // A resumed frame adds to its checkpoint's counters: it counts per cell
+  // as they were counted.
+  const FrameProgress* const resumed = settings.passes ? settings.passes->resume : nullptr;
+  if (resumed && !resumed->counters.empty() && resumed->cell_sample != (plan.mode == PerCell::no ? 0 : plan.every)) {
+    const std::uint64_t every = resumed->cell_sample;
+    plan = every == 0 ? PerCellPlan{PerCell::no, 1, 0, plan.note}
+                      : plan_per_cell(n, sets, std::uint64_t(active_threads()), every, grid.bytes(), settings.stats_max_bytes);
+    if (every != 0 && (plan.mode == PerCell::no || plan.every != every))
+      throw std::runtime_error("per-cell statistics: the checkpoint counted 1 path in " + std::to_string(every) +
+                               " per cell, which this run cannot within --grid-max-bytes");
+  }
   if (TileSchedule* const split = settings.tiles) {
     // A frame shared by processes counts per cell as its writer does (the
     // same paths: 1 in the writer's rate, or none), whatever each process's
@@ -54,15 +66,29 @@ RenderResult render_counting_with(const Scene& scene, const Walker& grid, const 
   tbb::enumerable_thread_specific<RenderCounters> per_thread([&] {
     return shared[0] ? RenderCounters(shared, size) : RenderCounters(n, size, plan.mode == PerCell::own, lobes);
   });
+  // Counters of this frame's shape, zero: what a process given no tile
+  // adds, and what a checkpoint's sum of the threads' starts from (the
+  // threads' own arrays added in, shared ones held once).
+  const auto zero_counters = [&] {
+    return shared[0] ? RenderCounters(shared, size) : RenderCounters(n, size, plan.mode == PerCell::own, lobes);
+  };
+  const FrameCounters frame_counters{[&] {
+                                       RenderCounters sum = zero_counters();
+                                       for (const RenderCounters& c : per_thread) sum.merge(c);
+                                       return sum.flatten();
+                                     },
+                                     plan.mode == PerCell::no ? 0 : plan.every};
   RenderResult result;
   if (shared[0])
-    result = render_tiles(scene, settings, film, progress, [&] {
-      return CountingQueries<Walker, PerCell::shared>(grid, per_thread.local(), sampling, settings.occluder_cache);
-    });
+    result = render_tiles(
+        scene, settings, film, progress,
+        [&] { return CountingQueries<Walker, PerCell::shared>(grid, per_thread.local(), sampling, settings.occluder_cache); },
+        &frame_counters);
   else
-    result = render_tiles(scene, settings, film, progress, [&] {
-      return CountingQueries<Walker, PerCell::own>(grid, per_thread.local(), sampling, settings.occluder_cache);
-    });
+    result = render_tiles(
+        scene, settings, film, progress,
+        [&] { return CountingQueries<Walker, PerCell::own>(grid, per_thread.local(), sampling, settings.occluder_cache); },
+        &frame_counters);
   // Merge into one thread's counters: no further copy of the arrays (and
   // none at all of shared ones).
   std::shared_ptr<RenderCounters> merged;
@@ -71,12 +97,18 @@ RenderResult render_counting_with(const Scene& scene, const Walker& grid, const 
     else merged->merge(c);
   }
   if (!merged)  // no tile rendered here (a rank given none): counts of the same shape, zero
-    merged = shared[0] ? std::make_shared<RenderCounters>(shared, size)
-                       : std::make_shared<RenderCounters>(n, size, plan.mode == PerCell::own, lobes);
-  if (TileSchedule* const split = settings.tiles) {
-    // Every process's counts, summed into the writer's.
+    merged = std::make_shared<RenderCounters>(zero_counters());
+  if (settings.tiles || (resumed && !resumed->counters.empty())) {
+    // Every process's counts, summed into the writer's, and a checkpoint's
+    // (the writer's resume alone has them).
     std::vector<std::uint64_t> flat = merged->flatten();
-    split->sum_on_writer(flat);
+    if (settings.tiles) settings.tiles->sum_on_writer(flat);
+    if (resumed && !resumed->counters.empty()) {
+      if (resumed->counters.size() != flat.size())
+        throw std::runtime_error("statistics: the checkpoint's counters are not this frame's (" +
+                                 std::to_string(resumed->counters.size()) + " counts, here " + std::to_string(flat.size()) + ")");
+      for (std::size_t i = 0; i < flat.size(); ++i) flat[i] += resumed->counters[i];
+    }
     merged->assign(flat);
   }
   result.counters = merged;

@@ -20,6 +20,7 @@
 #include "core/thread_limit.h"
 #include "renderer/render/camera.h"
 #include "renderer/render/frame_accumulator.h"
+#include "renderer/render/frame_progress.h"
 #include "renderer/render/path_tracer.h"
 #include "renderer/render/samplers.h"
 #include "renderer/render/tile_schedule.h"
@@ -30,7 +31,7 @@ namespace kappa {
 /// its Queries object for a tile.
 template <class MakeQueries>
 RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Film& film, const ProgressCallback& progress,
-                          MakeQueries&& make_queries) {
+                          MakeQueries&& make_queries, const FrameCounters* frame_counters = nullptr) {
   const Camera camera(scene.camera, film.width, film.height);
   const PathTracer tracer(scene, settings, &camera);
   const int tiles_x = (film.width + kTileSize - 1) / kTileSize;
@@ -140,8 +141,9 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
       }
     });
   };
+  Counters resumed_counts;  // a resumed frame's counts from before its checkpoint
   const auto totals = [&] {
-    Counters sum;
+    Counters sum = resumed_counts;
     counters.combine_each([&](const Counters& c) {
       sum.rays += c.rays;
       sum.nonfinite += c.nonfinite;
@@ -153,6 +155,10 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
   result.path_variant = path_variant_name(variant);
   Counters completed;  // as of the last completed pass
   FrameState state{0, film.pixels(), 0.0};
+  if (control && control->resume) {
+    resume_frame(*control, *acc, film, state, result);
+    resumed_counts = completed = Counters{control->resume->rays, control->resume->nonfinite};
+  }
   for (;;) {
     int count = planner ? planner->next_pass(state) : (result.passes == 0 ? settings.spp : 0);
     // Processes sharing a frame take the writer's pass: its clock decides.
@@ -183,6 +189,9 @@ RenderResult render_tiles(const Scene& scene, const RenderSettings& settings, Fi
       state.relmse_estimate = acc->relmse_estimate();
       result.spp_spread = acc->spp_spread();
       if (control->on_pass) control->on_pass(state, result.passes);
+      if (control->checkpoint_due)
+        checkpoint_if_due(*control, *acc, state, result.passes, completed.rays, completed.nonfinite, planner->elapsed(),
+                          frame_counters, schedule);
     }
   }
   if (!acc) {

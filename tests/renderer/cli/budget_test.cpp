@@ -10,11 +10,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "core/hash.h"
 #include "test_util.h"
 
 extern char** environ;
@@ -201,6 +203,116 @@ TEST(Budget, ASecondCtrlCWritesNothing) {
                                      {"--width", "1024", "--height", "1024", "--time-budget", "1h"}, 1, 2);
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << "status " << status;
   EXPECT_EQ(entries(tmp.path()), 0u);
+}
+
+/// A report's section without its times (which differ run to run), at any depth.
+nlohmann::json counts_of(nlohmann::json section) {
+  if (section.is_object()) {
+    section.erase("time_s");
+    for (auto& [name, value] : section.items()) value = counts_of(value);
+  }
+  return section;
+}
+
+/// The Cornell box at 48 x 32, 1024 spp, statistics on, one thread: about a
+/// second, in passes of about 20 ms with checkpoints. The occluder cache
+/// off: with it, which shadow rays walk depends on the passes' tiles (their
+/// cache begins with each), and a frame of one pass and one of many count
+/// the same shadow rays split otherwise between walks and cache hits.
+std::vector<std::string> checkpointed_frame() {
+  return {"--width", "48", "--height", "32", "--spp", "1024", "--stats", "on", "--threads", "1",
+          "--occluder-cache", "off"};
+}
+
+/// Leaves in `dir` the checkpoint of a render of checkpointed_frame()
+/// stopped by Ctrl-C after 4 passes (and its image of those passes).
+void leave_a_checkpoint(const fs::path& dir, const fs::path& passes_file) {
+  auto flags = checkpointed_frame();
+  flags.insert(flags.end(), {"--checkpoint-every", "20ms"});
+  const int status = interrupt_after(dir, passes_file, flags, 4);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << "status " << status;
+  ASSERT_TRUE(fs::exists(dir / "x.exr.checkpoint"));
+}
+
+TEST(Checkpoint, AResumedRenderEndsWithTheImageAndCountsOfARenderNotStopped) {
+  test::TempDir tmp, side, ref;
+  auto args = std::vector<std::string>{"render", cornell(), "--out", (ref / "x.exr").string(), "--report",
+                                       (ref / "x.json").string(), "--quiet"};
+  const auto frame = checkpointed_frame();
+  args.insert(args.end(), frame.begin(), frame.end());
+  const auto one_pass = test::run_kappa(args);
+  ASSERT_EQ(one_pass.exit_code, 0) << one_pass.std_err;
+  leave_a_checkpoint(tmp.path(), side / "passes");
+  args = {"render", cornell(), "--out", (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(), "--quiet",
+          "--resume"};
+  args.insert(args.end(), frame.begin(), frame.end());
+  const auto resumed = test::run_kappa(args);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.std_err;
+  EXPECT_TRUE(test::bitwise_equal(test::read_exr_file(tmp / "x.exr").pixels, test::read_exr_file(ref / "x.exr").pixels));
+  const auto a = nlohmann::json::parse(test::read_file(ref / "x.json"));
+  const auto b = nlohmann::json::parse(test::read_file(tmp / "x.json"));
+  EXPECT_GE(b["render"]["resumed_passes"].get<int>(), 1);
+  EXPECT_GT(b["render"]["passes"].get<int>(), b["render"]["resumed_passes"].get<int>());
+  for (const char* key : {"spp", "rays", "nonfinite_samples"}) EXPECT_EQ(b["render"][key], a["render"][key]) << key;
+  EXPECT_EQ(counts_of(b["rays"]), counts_of(a["rays"]));
+  EXPECT_EQ(b["stats"], a["stats"]);
+  EXPECT_FALSE(fs::exists(tmp / "x.exr.checkpoint")) << "a finished render's checkpoint is removed";
+}
+
+TEST(Checkpoint, ACheckpointOfOtherSettingsOrDamagedIsRefusedWithOneLine) {
+  test::TempDir tmp, side;
+  leave_a_checkpoint(tmp.path(), side / "passes");
+  const fs::path checkpoint = tmp / "x.exr.checkpoint";
+  const std::string saved = test::read_file(checkpoint);
+  // Resumed with checkpointed_frame()'s flags, `flag` given `value` instead.
+  const auto resume = [&](const std::string& flag = "", const std::string& value = "") {
+    std::vector<std::string> args = {"render", cornell(), "--out", (tmp / "x.exr").string(), "--quiet", "--resume"};
+    auto frame = checkpointed_frame();
+    const auto it = std::find(frame.begin(), frame.end(), flag);
+    if (it != frame.end()) *std::next(it) = value;
+    else if (!flag.empty()) frame.insert(frame.end(), {flag, value});
+    args.insert(args.end(), frame.begin(), frame.end());
+    return test::run_kappa(args);
+  };
+  const auto refused = [&](const test::RunResult& r, const std::string& says) {
+    EXPECT_EQ(r.exit_code, 2) << r.std_err;
+    ASSERT_EQ(r.err_lines().size(), 1u) << r.std_err;
+    EXPECT_NE(r.std_err.find(says), std::string::npos) << r.std_err;
+  };
+  // Each case's checkpoint, left as it was by the refusal.
+  const auto refused_with = [&](const std::string& bytes, const test::RunResult& r, const std::string& says) {
+    refused(r, says);
+    EXPECT_TRUE(test::read_file(checkpoint) == bytes) << "a refused checkpoint is left as it was (" << says << ")";
+  };
+  refused_with(saved, resume("--spp", "512"), "its spp is 1024, here 512");
+  refused_with(saved, resume("--seed", "7"), "its seed is");
+  refused_with(saved, resume("--width", "40"), "its width is");
+  // Cut short, and one byte changed.
+  const std::string cut = saved.substr(0, saved.size() / 2);
+  test::write_file(checkpoint, cut);
+  refused_with(cut, resume(), "a damaged checkpoint");
+  std::string changed = saved;
+  changed[changed.size() / 2] ^= 1;
+  test::write_file(checkpoint, changed);
+  refused_with(changed, resume(), "a damaged checkpoint");
+  // Another Kappa's, its hash made again.
+  std::string other = saved;
+  const std::size_t at = other.find("\"kappa_version\":\"") + 17;
+  other.replace(at, other.find('"', at) - at, "0123456789ab");
+  other.resize(other.size() - 17);
+  char hash[18];
+  std::snprintf(hash, sizeof hash, "%016llx\n", static_cast<unsigned long long>(fnv1a64(other)));
+  test::write_file(checkpoint, other + hash);
+  refused_with(other + hash, resume(), "a checkpoint of Kappa 0123456789ab");
+  test::write_file(checkpoint, saved);
+  // None at all; and a checkpoint cannot be kept beside standard output.
+  fs::remove(checkpoint);
+  const auto none = resume();
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.std_err.find("--resume: cannot read"), std::string::npos) << none.std_err;
+  const auto dash = test::run_kappa({"render", cornell(), "--out", "-", "--checkpoint-every", "1s", "--quiet"});
+  EXPECT_EQ(dash.exit_code, 2);
+  EXPECT_NE(dash.std_err.find("needs the image to be a file"), std::string::npos) << dash.std_err;
 }
 
 }  // namespace

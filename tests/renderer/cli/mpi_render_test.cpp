@@ -320,6 +320,62 @@ TEST(MpiRender, ARankKilledWhileRenderingEndsTheJobWithNothingWritten) {
 #endif
 }
 
+TEST(MpiRender, AJobWhoseRankDiedResumesOnAnyNumberOfRanksToTheImageOfARenderNotStopped) {
+#ifndef KAPPA_MPI_BINARY
+  GTEST_SKIP() << "kappa-mpi is not built (CMake found no MPI)";
+#else
+  test::TempDir dir, ref;
+  const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
+  // The occluder cache off: with it, which shadow rays walk depends on the
+  // passes' tiles (budget_test.cpp's checkpointed_frame says why).
+  const std::vector<std::string> frame = {"--width", "32",      "--height", "32",  "--spp", "2048", "-q",
+                                          "--stats", "on",      "--threads", "1",  "--occluder-cache", "off"};
+  auto args = std::vector<std::string>{"render", scene, "--out", (ref / "x.exr").string(), "--report",
+                                       (ref / "x.json").string()};
+  args.insert(args.end(), frame.begin(), frame.end());
+  const test::RunResult one_pass = test::run_kappa(args);
+  ASSERT_EQ(one_pass.exit_code, 0) << one_pass.std_err;
+  const auto out = dir / "x.exr", checkpoint = dir / "x.exr.checkpoint";
+  args = {"render", scene, "--out", out.string(), "--report", (dir / "x.json").string()};
+  args.insert(args.end(), frame.begin(), frame.end());
+  // 2 ranks saving every 50 ms; rank 1 killed once rank 0 has saved one.
+  auto checkpointed = args;
+  checkpointed.insert(checkpointed.end(), {"--checkpoint-every", "50ms"});
+  test::RunResult killed;
+  std::thread job([&] { killed = run_mpi(2, checkpointed); });
+  pid_t victim = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline && (victim == 0 || !std::filesystem::exists(checkpoint))) {
+    if (victim == 0) victim = rank_process(1, out.string());
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (victim != 0) kill(victim, SIGKILL);
+  job.join();
+  ASSERT_NE(victim, 0) << killed.std_err;
+  ASSERT_NE(killed.exit_code, 0) << "the job finished before rank 1 was killed: " << killed.std_err;
+  ASSERT_TRUE(std::filesystem::exists(checkpoint)) << killed.std_err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const std::string saved = test::read_file(checkpoint);
+  // Resumed on 3 ranks, and on one process (build/kappa): the one-pass image,
+  // and every count.
+  const auto reference = test::read_exr_file(ref / "x.exr").pixels;
+  const auto reference_report = nlohmann::json::parse(test::read_file(ref / "x.json"));
+  auto resume = args;
+  resume.push_back("--resume");
+  for (int ranks : {3, 0}) {
+    test::write_file(checkpoint, saved);
+    const test::RunResult r = ranks ? run_mpi(ranks, resume) : test::run_kappa(resume);
+    ASSERT_EQ(r.exit_code, 0) << ranks << " ranks: " << r.std_err;
+    EXPECT_TRUE(test::bitwise_equal(test::read_exr_file(out).pixels, reference)) << ranks << " ranks";
+    const auto report = nlohmann::json::parse(test::read_file(dir / "x.json"));
+    EXPECT_GE(report["render"]["resumed_passes"].get<int>(), 1);
+    EXPECT_EQ(report["render"]["rays"], reference_report["render"]["rays"]) << ranks << " ranks";
+    EXPECT_EQ(counts_of(report["rays"]), counts_of(reference_report["rays"])) << ranks << " ranks";
+    EXPECT_FALSE(std::filesystem::exists(checkpoint));
+  }
+#endif
+}
+
 TEST(MpiRender, BadInputStopsEveryRankWithOneLine) {
 #ifndef KAPPA_MPI_BINARY
   GTEST_SKIP() << "kappa-mpi is not built (CMake found no MPI)";

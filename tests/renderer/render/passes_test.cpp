@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "core/thread_limit.h"
 #include "renderer/render/pass_planner.h"
@@ -194,6 +195,74 @@ TEST(PassPlanner, PassesEndAtEveryCheckpoint) {
   while (const int count = planner.next_pass(state)) totals.push_back(state.spp += count);
   EXPECT_EQ(totals, (std::vector<int>{1, 2, 4, 16, 64}));
   EXPECT_EQ(planner.stop_reason(), "spp");
+}
+
+// --checkpoint-every without a noise target: passes of about the longest
+// pass, learnt from the last, ending at the cap (a render of --spp).
+TEST(PassPlanner, ALongestPassSizesThePassesOfAnSppRender) {
+  Budget budget;
+  budget.spp_cap = 20;
+  budget.longest_pass_s = 1;
+  double t = 0;
+  PassPlanner planner(budget, [&t] { return t; });
+  FrameState state{0, 10, 0.0};
+  std::vector<int> counts;
+  while (const int count = planner.next_pass(state)) {
+    counts.push_back(count);
+    state.spp += count;
+    t += 0.25 * count;  // a sample per pixel: 0.25 s
+  }
+  EXPECT_EQ(counts, (std::vector<int>{1, 4, 4, 4, 4, 3}));
+  EXPECT_EQ(planner.stop_reason(), "spp");
+}
+
+// --resume: a noise target's passes after the checkpoint are those of the
+// run not stopped (the estimate alone sizes them, --checkpoint-every or
+// not); a time budget's first pass learns the speed again, and its budget
+// counts the time spent before.
+TEST(PassPlanner, AResumedPlannerTakesThePassesOfARunNotStopped) {
+  Budget budget;
+  budget.target_relmse = 0.01;
+  budget.longest_pass_s = 0.5;  // no part in the sizing: a noise target sizes the passes
+  double t = 0;
+  const auto estimate = [](int spp) { return spp > 0 ? 0.64 / spp : 0.0; };  // falls as 1/n
+  std::vector<FrameState> states;
+  std::vector<int> counts;
+  PassPlanner whole(budget, [&t] { return t; });
+  FrameState state{0, 100, 0.0};
+  while (const int count = whole.next_pass(state)) {
+    counts.push_back(count);
+    state.spp += count;
+    state.relmse_estimate = estimate(state.spp);
+    states.push_back(state);
+    t += 1;  // slow passes: time would have cut them
+  }
+  ASSERT_GE(counts.size(), 4u);
+  for (std::size_t k = 1; k + 1 < counts.size(); ++k) {
+    PassPlanner resumed(budget, [&t] { return t; });
+    resumed.resume(double(k));
+    FrameState s = states[k - 1];
+    std::vector<int> rest;
+    while (const int count = resumed.next_pass(s)) {
+      rest.push_back(count);
+      s.spp += count;
+      s.relmse_estimate = estimate(s.spp);
+    }
+    EXPECT_EQ(rest, std::vector<int>(counts.begin() + std::ptrdiff_t(k), counts.end())) << "resumed after pass " << k;
+    EXPECT_EQ(resumed.stop_reason(), whole.stop_reason());
+  }
+  Budget timed;
+  timed.time_s = 10;
+  t = 100;
+  PassPlanner again(timed, [&t] { return t; });
+  again.resume(9.5);
+  EXPECT_DOUBLE_EQ(again.elapsed(), 9.5);
+  EXPECT_EQ(again.next_pass({50, 10, 0.0}), 1) << "the speed is learnt again";
+  t += 0.1;  // 1 spp of 10 pixels: 0.1 s, and 0.4 s left
+  EXPECT_EQ(again.next_pass({51, 10, 0.0}), 4);
+  t += 0.4;
+  EXPECT_EQ(again.next_pass({55, 10, 0.0}), 0);
+  EXPECT_EQ(again.stop_reason(), "time-budget");
 }
 
 TEST(Passes, NonFiniteSamplesAreDroppedFromTheirPixelNotAveragedIn) {
