@@ -4,6 +4,7 @@ tile scheduler on K ranks with the per-tile costs of a real frame.
 
     tools/mpi_scaling.py REPORT.json [--ranks 1,2,4,...] [--threads T]
                          [--latency S] [--bandwidth B] [--service S]
+                         [--order report|tiles|pilot|slowest]
 
 REPORT.json is a report of `kappa-mpi render ... --report` (any number of
 ranks; `mpirun -np 1` is enough): its `mpi.tile_seconds` are each tile's
@@ -11,7 +12,7 @@ seconds on the thread that rendered it, summed over the passes. The
 simulation replays what renderer/mpi/mpi_frame_split.cpp does, pass by pass
 as one pass of those costs:
 
-- rank 0 hands out tiles one at a time in tile order (its own threads take
+- rank 0 hands out tiles one at a time (its own threads take
   theirs with no message); another rank keeps one request in flight: when a
   thread of it takes a tile (the answer to the last request, waited for if it
   has not arrived: a round trip, 2 latencies), the next request leaves, to be
@@ -20,6 +21,13 @@ as one pass of those costs:
 - after the pass every other rank sends its tiles' pixels (every channel,
   4 bytes a float) to rank 0, which receives them one rank after another at
   `--bandwidth` bytes a second, each message a latency more.
+
+The tiles go out in the order `--order` names: `tiles` (tile order), `pilot`
+(the costliest first by the report's `mpi.tile_predicted`, as kappa-mpi's
+first pass does where a pilot ran), `slowest` (the slowest first by the
+measured seconds themselves, as its later passes do by the pass before's);
+`report` (the default) is the order the report's first pass went in
+(`mpi.first_pass_order`).
 
 The frame's time is the last tile's end plus the gather; the speed-up is the
 one-rank frame's time over it, with the same threads a rank; the imbalance
@@ -50,17 +58,40 @@ def tile_pixels(width, height, size):
     return out
 
 
-def simulate(costs, pixels, ranks, threads, latency, bandwidth, service, bytes_per_pixel):
-    """(frame seconds, imbalance) of one pass of `costs` on `ranks` x `threads`."""
+def tile_order(mpi, costs, order):
+    """The tiles in the order `order` names (see the module's text)."""
+    if order == "report":
+        order = "pilot" if mpi.get("first_pass_order") == "pilot" else "tiles"
+    if order == "tiles":
+        return list(range(len(costs)))
+    if order == "pilot":
+        predicted = mpi.get("tile_predicted")
+        if not predicted or len(predicted) != len(costs):
+            sys.exit("--order pilot: the report has no mpi.tile_predicted of its tiles (a frame with no pilot)")
+        key = predicted
+    else:
+        key = costs
+    return sorted(range(len(costs)), key=lambda t: -key[t])  # stable: ties in tile order
+
+
+def simulate(costs, pixels, ranks, threads, latency, bandwidth, service, bytes_per_pixel, order=None):
+    """(frame seconds, imbalance) of one pass of `costs` on `ranks` x `threads`,
+    the tiles handed out in `order` (default tile order)."""
+    order = order if order is not None else list(range(len(costs)))
     state = {"next": 0, "coordinator_free": 0.0}
+
+    def take():
+        """The next tile to hand out, or None."""
+        if state["next"] >= len(order):
+            return None
+        state["next"] += 1
+        return order[state["next"] - 1]
 
     def ask(leave):
         """A request leaving a rank at `leave`: (tile or None, when its answer arrives)."""
         answered = max(leave + latency, state["coordinator_free"]) + service
         state["coordinator_free"] = answered
-        tile = state["next"] if state["next"] < len(costs) else None
-        state["next"] += tile is not None
-        return tile, answered + latency
+        return take(), answered + latency
 
     pending = [None] * ranks     # a rank's request in flight: (tile, arrival)
     busy = [0.0] * ranks
@@ -77,8 +108,7 @@ def simulate(costs, pixels, ranks, threads, latency, bandwidth, service, bytes_p
             pending[r] = ask(t)
             continue
         if r == 0:  # rank 0's threads take the next tile with no message
-            tile, start = (state["next"], t) if state["next"] < len(costs) else (None, t)
-            state["next"] += tile is not None
+            tile, start = take(), t
         else:
             # The answer to the request in flight (the first: asked now),
             # then the next request, answered while this tile renders.
@@ -109,6 +139,8 @@ def main():
     parser.add_argument("--latency", type=float, default=2e-6, help="seconds a message (default 2e-6, InfiniBand)")
     parser.add_argument("--bandwidth", type=float, default=10e9, help="bytes a second into rank 0 (default 10e9)")
     parser.add_argument("--service", type=float, default=1e-6, help="seconds the coordinator takes a request")
+    parser.add_argument("--order", choices=["report", "tiles", "pilot", "slowest"], default="report",
+                        help="the order the tiles go out in (default: the report's first pass's)")
     args = parser.parse_args()
     with open(args.report) as f:
         report = json.load(f)
@@ -123,16 +155,17 @@ def main():
         sys.exit(f"{args.report}: {len(costs)} tile costs for a {render['width']}x{render['height']} frame of {len(pixels)} tiles")
     bytes_per_pixel = 4 * floats_per_pixel(report)
     ranks = [int(k) for k in args.ranks.split(",")]
-    base, _ = simulate(costs, pixels, 1, threads, args.latency, args.bandwidth, args.service, bytes_per_pixel)
+    order = tile_order(mpi, costs, args.order)
+    base, _ = simulate(costs, pixels, 1, threads, args.latency, args.bandwidth, args.service, bytes_per_pixel, order)
     print(f"{report.get('scene', '?')}: {render['width']}x{render['height']}, {render['spp']} spp, {len(costs)} tiles "
           f"({sum(costs):.3f} thread-seconds, the largest {max(costs) * 1e3:.2f} ms), {threads} thread(s) a rank, "
-          f"latency {args.latency:g} s, bandwidth {args.bandwidth:g} B/s")
+          f"latency {args.latency:g} s, bandwidth {args.bandwidth:g} B/s, order {args.order}")
     print()
     print("| ranks | predicted frame s | speed-up | efficiency | imbalance |")
     print("|---:|---:|---:|---:|---:|")
     for k in ranks:
         seconds, imbalance = simulate(costs, pixels, k, threads, args.latency, args.bandwidth, args.service,
-                                      bytes_per_pixel)
+                                      bytes_per_pixel, order)
         speedup = base / seconds if seconds > 0 else float("nan")
         print(f"| {k} | {seconds:.4f} | {speedup:.2f} | {speedup / k:.2f} | {imbalance:.2f} |")
 

@@ -170,7 +170,7 @@ FrameAccelerator build_as_the_writer_chooses(FrameSplit& split, const Scene& sce
   const std::size_t space = choice.find(' ');
   chosen.accel = choice.substr(0, space);
   if (space != std::string::npos) chosen.build.grid_res = choice.substr(space + 1);
-  return {make_accelerator(chosen.accel, scene.triangles, chosen.build, progress), {}, nullptr};
+  return {make_accelerator(chosen.accel, scene.triangles, chosen.build, progress), {}, nullptr, {}};
 }
 
 /// The settings a checkpoint must have been made with to be resumed here:
@@ -310,6 +310,8 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
   });
   std::unique_ptr<Accelerator> accel = std::move(frame_accel.accel);
   const std::optional<GridChoice>& grid_choice = frame_accel.grid_choice;
+  // The writer's pilot, where one ran, orders the first pass's tiles.
+  if (split && writer) split->predict_tile_costs(frame_accel.tile_costs);
   const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
 
   const int threads = active_threads();
@@ -454,7 +456,7 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
                     result, calibration, to_json(record));
   if (grid_choice) report["grid_choice"] = grid_choice->report;
   if (!frame_accel.accel_choice.is_null()) report["accel_choice"] = frame_accel.accel_choice;
-  if (split && !split->shares().empty()) report["mpi"] = mpi_section(split->shares(), split->tile_seconds());
+  if (split && !split->shares().empty()) report["mpi"] = mpi_section(split->shares(), split->tile_seconds(), split->first_pass_costs());
 
   if (cell_map_out && result.counters) {
     if (result.counters->classes[0].per_cell()) {

@@ -6,6 +6,7 @@
 #include "core/check.h"
 #include "core/thread_limit.h"
 #include "renderer/render/film.h"
+#include "renderer/render/tile_costs.h"
 
 namespace kappa {
 namespace {
@@ -83,9 +84,9 @@ bool MpiFrameSplit::all_succeeded(bool succeeded) {
 
 void MpiFrameSplit::begin_pass(std::size_t tiles) {
   m_rendering = true;
-  if (m_order.size() != tiles) {  // the first pass: tile order
-    m_order.resize(tiles);
-    for (std::size_t t = 0; t < tiles; ++t) m_order[t] = t;
+  if (m_order.size() != tiles) {  // the first pass: by the predicted costs, or in tile order
+    m_order = costliest_first(m_predicted, tiles);
+    if (m_predicted.size() == tiles) m_first_pass_costs = m_predicted;
     m_tile_seconds.assign(tiles, 0.0);
     m_tile_seconds_sum.assign(m_rank == 0 ? tiles : 0, 0.0);
   }
@@ -228,8 +229,7 @@ void MpiFrameSplit::end_pass(Film* film, std::span<double> tile_estimates, std::
   // The next pass's tiles, the slowest of this one first (ties in tile
   // order): the last tiles handed out are then the quickest, and no rank is
   // left with a long one while the others wait.
-  std::stable_sort(m_order.begin(), m_order.end(),
-                   [&](std::size_t a, std::size_t b) { return m_tile_seconds[a] > m_tile_seconds[b]; });
+  m_order = costliest_first(m_tile_seconds, m_tiles);
 }
 
 void MpiFrameSplit::gather_pixels(Film& film) {

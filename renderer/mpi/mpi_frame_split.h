@@ -38,6 +38,8 @@ class MpiFrameSplit final : public FrameSplit {
   void sum_on_writer(std::span<std::uint64_t> values) override;
   std::vector<ProcessShare> shares() const override { return m_shares; }
   std::vector<double> tile_seconds() const override { return m_tile_seconds_sum; }
+  void predict_tile_costs(std::vector<double> costs) override { m_predicted = std::move(costs); }
+  std::vector<double> first_pass_costs() const override { return m_first_pass_costs; }
 
   void rendering_begins() override { m_rendering = true; }
   /// Past the last agreement: from here a rank that fails cannot meet the
@@ -77,6 +79,8 @@ class MpiFrameSplit final : public FrameSplit {
   std::chrono::steady_clock::time_point m_pass_start;
   std::vector<ProcessShare> m_shares;            // rank 0: every rank's, summed over the passes
   std::vector<std::size_t> m_order;              // rank 0: the order tiles go out in this pass
+  std::vector<double> m_predicted;               // rank 0: each tile's predicted cost, for the first pass
+  std::vector<double> m_first_pass_costs;        // rank 0: m_predicted, once the first pass went by it
   std::vector<double> m_tile_seconds;            // each tile's seconds in its last pass (rank 0: all)
   std::vector<double> m_tile_seconds_sum;        // rank 0: each tile's, summed over the passes
 };

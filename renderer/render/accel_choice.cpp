@@ -10,6 +10,7 @@
 #include "core/check.h"
 #include "core/input_error.h"
 #include "core/thread_limit.h"
+#include "renderer/render/tile_costs.h"
 #include "stats/grid2_model.h"
 #include "stats/naive_model.h"
 
@@ -93,10 +94,13 @@ FrameAccelerator build_frame_accelerator(const Scene& scene, const RenderSetting
                                          const Calibration& calibration, TaskProgress* progress) {
   const bool by_model = request.build.grid_res == "model";
   if (request.accel != "auto") {
-    if (request.accel != "grid") return {make_accelerator(request.accel, scene.triangles, request.build, progress), {}, nullptr};
+    if (request.accel != "grid")
+      return {make_accelerator(request.accel, scene.triangles, request.build, progress), {}, nullptr, {}};
     std::optional<FramePilot> pilot;
     if (by_model) pilot = run_frame_pilot(scene, settings, request.frame_paths, nullptr, progress);
-    return build_grid(scene, settings, request, calibration, pilot ? &*pilot : nullptr, progress);
+    FrameAccelerator out = build_grid(scene, settings, request, calibration, pilot ? &*pilot : nullptr, progress);
+    if (pilot) out.tile_costs = predicted_tile_costs(pilot->pilot, scene.width, scene.height);
+    return out;
   }
 
   const auto start = std::chrono::steady_clock::now();
@@ -172,6 +176,7 @@ FrameAccelerator build_frame_accelerator(const Scene& scene, const RenderSetting
                      {"seconds", pilot.pilot.seconds}};
   choice["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.accel_choice = std::move(choice);
+  out.tile_costs = predicted_tile_costs(pilot.pilot, scene.width, scene.height);
   return out;
 }
 

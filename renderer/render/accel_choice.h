@@ -46,6 +46,7 @@ struct FrameAccelerator {
   std::unique_ptr<Accelerator> accel;
   std::optional<GridChoice> grid_choice;  ///< with --grid-res model
   nlohmann::ordered_json accel_choice;    ///< the report's accel_choice with --accel auto, else null
+  std::vector<double> tile_costs;         ///< by tile, predicted from the pilot where one ran (tile_costs.h), else empty
 };
 
 /// Builds the frame's accelerator. Throws InputError as make_accelerator and

@@ -52,6 +52,14 @@ class FrameSplit : public TileSchedule {
   /// On the writer, after the last pass: each tile's seconds on the thread
   /// that rendered it, summed over the passes, by tile (empty on the others).
   virtual std::vector<double> tile_seconds() const = 0;
+  /// On the writer, before the first pass: each tile's predicted cost
+  /// (tile_costs.h, from a pilot), for the first pass's order, the costliest
+  /// first. Without, the first pass goes in tile order; later passes go by
+  /// the tiles' measured seconds either way.
+  virtual void predict_tile_costs(std::vector<double> costs) = 0;
+  /// On the writer, after the first pass: the predicted costs it handed its
+  /// tiles out by, or empty where it went in tile order (the report's).
+  virtual std::vector<double> first_pass_costs() const = 0;
 };
 
 /// Thrown on every process where a shared frame stops at an agreed step

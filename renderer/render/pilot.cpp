@@ -19,10 +19,12 @@ namespace {
 struct RecordingQueries {
   const Accelerator& accel;
   std::vector<PilotSegment>& out;
+  std::vector<std::uint32_t>& pixel_rays;  ///< a pixel's element written by the one thread rendering it
   std::uint64_t rays = 0;
+  std::size_t pixel = 0;
 
   QueryWork work() const { return {}; }
-  void begin_path(std::uint64_t /*pixel*/, std::uint64_t /*sample*/) {}
+  void begin_path(std::uint64_t next_pixel, std::uint64_t /*sample*/) { pixel = std::size_t(next_pixel); }
 
   template <HitFilter F = NoHitFilter>
   std::optional<Hit> closest(const Ray& r, int depth, const F& filter = {}) {
@@ -46,6 +48,7 @@ struct RecordingQueries {
   template <HitFilter F>
   std::optional<Hit> record(const Ray& r, RenderClass k, const F& filter) {
     ++rays;
+    ++pixel_rays[pixel];
     const std::optional<Hit> hit = filtered_closest(accel, r, filter);
     out.push_back({r, hit ? hit->t : r.tmax, hit.has_value(), k});
     return hit;
@@ -72,7 +75,8 @@ Pilot run_pilot(const Scene& scene, int width, int height, int pixels, const Acc
   one.test_nonfinite = nullptr;
   Film film(pilot.width, pilot.height, AovSelection{});
   tbb::enumerable_thread_specific<std::vector<PilotSegment>> per_thread;
-  render_tiles(scene, one, film, {}, [&] { return RecordingQueries{accel, per_thread.local()}; });
+  pilot.pixel_rays.assign(std::size_t(pilot.width) * std::size_t(pilot.height), 0);
+  render_tiles(scene, one, film, {}, [&] { return RecordingQueries{accel, per_thread.local(), pilot.pixel_rays}; });
   std::size_t total = 0;
   for (const auto& v : per_thread) total += v.size();
   pilot.segments.reserve(total);

@@ -21,6 +21,10 @@ struct Pilot {
   std::array<std::uint64_t, kRenderClasses> rays{};  ///< of them, per class
   int width = 0, height = 0;           ///< the pilot's film: the frame's aspect, about the pixels asked for
   double seconds = 0;                  ///< the pilot render's wall time
+  /// Each pilot pixel's queries (width x height, row by row): where the
+  /// frame's samples cost more, for the order of its first pass's tiles
+  /// (tile_costs.h).
+  std::vector<std::uint32_t> pixel_rays;
 };
 
 /// The pilot's paths for a frame of `frame_paths` (pixels x spp): 1/256 of

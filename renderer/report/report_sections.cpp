@@ -11,7 +11,8 @@
 
 namespace kappa {
 
-nlohmann::ordered_json mpi_section(const std::vector<ProcessShare>& shares, const std::vector<double>& tile_seconds) {
+nlohmann::ordered_json mpi_section(const std::vector<ProcessShare>& shares, const std::vector<double>& tile_seconds,
+                                   const std::vector<double>& tile_predicted) {
   nlohmann::ordered_json per_rank = nlohmann::ordered_json::array(), threads = nlohmann::ordered_json::array();
   bool same_threads = true;
   double slowest = 0, sum = 0;
@@ -30,6 +31,8 @@ nlohmann::ordered_json mpi_section(const std::vector<ProcessShare>& shares, cons
   j["imbalance"] = sum > 0 ? nlohmann::ordered_json(slowest / (sum / double(shares.size()))) : nlohmann::ordered_json();
   j["tile_size"] = kTileSize;
   j["tile_seconds"] = tile_seconds;
+  j["first_pass_order"] = tile_predicted.empty() ? "tiles" : "pilot";
+  j["tile_predicted"] = tile_predicted.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(tile_predicted);
   return j;
 }
 

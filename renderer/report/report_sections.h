@@ -25,8 +25,10 @@ nlohmann::ordered_json images_section(const Scene& scene);
 /// number, or one per rank where they differ), per_rank [{rank, host,
 /// threads, tiles, rays, time_s}], imbalance (the slowest rank's time over
 /// the mean, 1 when even; null with no time), tile_seconds [each tile's,
-/// by tile]}.
-nlohmann::ordered_json mpi_section(const std::vector<ProcessShare>& shares, const std::vector<double>& tile_seconds);
+/// by tile], first_pass_order ("pilot" or "tiles"), tile_predicted [each
+/// tile's cost predicted from the pilot, by tile; null without one]}.
+nlohmann::ordered_json mpi_section(const std::vector<ProcessShare>& shares, const std::vector<double>& tile_seconds,
+                                   const std::vector<double>& tile_predicted);
 
 /// The run's warnings by kind: [{kind, count, first}], in the order first
 /// seen (core/warning_log.h); the terminal showed only the first few of each.

@@ -12,9 +12,10 @@ import tempfile
 src = sys.argv[1]
 
 
-def table(costs, width, height, *flags):
+def table(costs, width, height, *flags, predicted=None):
     report = {"scene": "synthetic", "render": {"width": width, "height": height, "spp": 1, "settings": {"aov": ""}},
-              "mpi": {"threads_per_rank": 1, "tile_size": 16, "tile_seconds": costs}}
+              "mpi": {"threads_per_rank": 1, "tile_size": 16, "tile_seconds": costs,
+                      "first_pass_order": "pilot" if predicted else "tiles", "tile_predicted": predicted}}
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "report.json")
         with open(path, "w") as f:
@@ -52,4 +53,15 @@ check(1.2 < slow[2]["speedup"] < 1.4, f"latency-bound: {slow[2]}")
 # 1 MB/s, 0.098 s, after 32 ms of rendering.
 gathered = table([0.001] * 64, 128, 128, "--ranks", "2", "--latency", "0", "--service", "0", "--bandwidth", "1e6")
 check(abs(gathered[2]["seconds"] - 0.1303) < 0.0002, f"the pixels' gather: {gathered[2]}")
+# The order: 63 tiles of 1 ms, the last of 1 s. In tile order, on 2 ranks,
+# the long tile starts once the short ones are shared out (about 32 ms in);
+# the costliest first, it starts at once and the other rank takes the rest.
+last_long = [0.001] * 63 + [1.0]
+in_order = table(last_long, 128, 128, "--ranks", "2", *free)
+check(abs(in_order[2]["seconds"] - 1.032) < 0.002, f"the long tile last, in tile order: {in_order[2]}")
+for name, result in (("slowest", table(last_long, 128, 128, "--ranks", "2", "--order", "slowest", *free)),
+                     ("pilot", table(last_long, 128, 128, "--ranks", "2", *free, predicted=[1] * 63 + [50])),
+                     ("report's pilot", table(last_long, 128, 128, "--ranks", "2", "--order", "pilot", *free,
+                                              predicted=[1] * 63 + [50]))):
+    check(abs(result[2]["seconds"] - 1.0) < 0.0005, f"the long tile first ({name}): {result[2]}")
 print("mpi_scaling_test: ok")

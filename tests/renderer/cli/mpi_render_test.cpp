@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <thread>
@@ -113,7 +114,9 @@ TEST(MpiRender, OneTwoAndThreeRanksRenderTheOneProcessImageAndCountsBitwise) {
       EXPECT_EQ(counts_of(report.value("rays", none)), counts_of(reference_report.value("rays", none)))
           << what << ", " << ranks << " ranks";
       EXPECT_EQ(report.value("stats", none), reference_report.value("stats", none)) << what << ", " << ranks << " ranks";
-      if (setting[1] == "on") EXPECT_TRUE(report.value("rays", none).contains("camera")) << what;
+      if (setting[1] == "on") {
+        EXPECT_TRUE(report.value("rays", none).contains("camera")) << what;
+      }
       // Who rendered what: every tile and ray once, one thread a rank.
       const nlohmann::json& mpi = report["mpi"];
       ASSERT_EQ(mpi["per_rank"].size(), std::size_t(ranks)) << report.dump(1);
@@ -131,6 +134,8 @@ TEST(MpiRender, OneTwoAndThreeRanksRenderTheOneProcessImageAndCountsBitwise) {
       EXPECT_EQ(tiles, 30u);  // 96 x 72 in 16-pixel tiles: 6 x 5
       EXPECT_EQ(rays, report["render"]["rays"].get<std::uint64_t>());
       EXPECT_GE(mpi["imbalance"].get<double>(), 1.0);
+      EXPECT_EQ(mpi["first_pass_order"], "tiles");  // no pilot ran
+      EXPECT_TRUE(mpi["tile_predicted"].is_null());
     }
   }
 #endif
@@ -170,8 +175,58 @@ TEST(MpiRender, AccelAutoAndGridResModelBuildWhatTheWritingRankChose) {
       EXPECT_EQ(chosen(report), chosen(reference_report)) << what;
       EXPECT_EQ(counts_of(report.value("rays", none)), counts_of(reference_report.value("rays", none)))
           << what << ", " << ranks << " ranks";
+      // The pilot orders the first pass's tiles: one cost a tile, 4 x 3.
+      EXPECT_EQ(report["mpi"]["first_pass_order"], "pilot") << what;
+      EXPECT_EQ(report["mpi"]["tile_predicted"].size(), 12u) << what;
     }
   }
+#endif
+}
+
+/// Pearson's correlation of two equally long series.
+double correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  const double n = double(a.size());
+  double ma = 0, mb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
+  double ab = 0, aa = 0, bb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ab += (a[i] - ma) * (b[i] - mb);
+    aa += (a[i] - ma) * (a[i] - ma);
+    bb += (b[i] - mb) * (b[i] - mb);
+  }
+  return aa > 0 && bb > 0 ? ab / std::sqrt(aa * bb) : 0.0;
+}
+
+TEST(MpiRender, ThePilotPredictsWhichTilesCostMore) {
+#ifndef KAPPA_MPI_BINARY
+  GTEST_SKIP() << "kappa-mpi is not built (CMake found no MPI)";
+#else
+  // The bunny on its ground against an empty sky: the predicted costs
+  // against each tile's cells and triangle tests in the frame (the cost
+  // AOVs, counted, so the test does not depend on the machine's speed):
+  // correlation 0.82 (-0.43 with the pilot's rows upside down). Against the
+  // tiles' seconds at 256 x 256, 8 spp, 2 ranks: 0.90 (and on Sponza 0.72,
+  // the dragon 0.86).
+  test::TempDir dir;
+  const std::string scene = (test::assets_dir() / "bunny-lowres" / "scene_lowres.json").string();
+  const test::RunResult r =
+      run_mpi(2, {"render", scene, "--spp", "4", "--width", "128", "--height", "128", "--grid-res", "model", "--aov",
+                  "cost", "--threads", "1", "-q", "--out", (dir / "b.exr").string(), "--report",
+                  (dir / "b.json").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.std_err;
+  const auto report = nlohmann::json::parse(test::read_file(dir / "b.json"));
+  ASSERT_EQ(report["mpi"]["first_pass_order"], "pilot");
+  const std::vector<double> predicted = report["mpi"]["tile_predicted"].get<std::vector<double>>();
+  ASSERT_EQ(predicted.size(), 64u);  // 8 x 8 tiles
+  const test::ExrFile image = test::read_exr_file(dir / "b.exr");
+  const std::vector<float> cells = image.values("cost.cells"), tests = image.values("cost.tests");
+  std::vector<double> counted(64, 0.0);
+  for (int y = 0; y < 128; ++y)
+    for (int x = 0; x < 128; ++x) {
+      const std::size_t p = std::size_t(y) * 128 + std::size_t(x);
+      counted[std::size_t(y / 16) * 8 + std::size_t(x / 16)] += double(cells[p]) + double(tests[p]);
+    }
+  EXPECT_GT(correlation(predicted, counted), 0.7) << report["mpi"].dump();
 #endif
 }
 
