@@ -265,8 +265,9 @@ TEST(Checkpoint, ACheckpointOfOtherSettingsOrDamagedIsRefusedWithOneLine) {
   const fs::path checkpoint = tmp / "x.exr.checkpoint";
   const std::string saved = test::read_file(checkpoint);
   // Resumed with checkpointed_frame()'s flags, `flag` given `value` instead.
+  std::string scene = cornell();
   const auto resume = [&](const std::string& flag = "", const std::string& value = "") {
-    std::vector<std::string> args = {"render", cornell(), "--out", (tmp / "x.exr").string(), "--quiet", "--resume"};
+    std::vector<std::string> args = {"render", scene, "--out", (tmp / "x.exr").string(), "--quiet", "--resume"};
     auto frame = checkpointed_frame();
     const auto it = std::find(frame.begin(), frame.end(), flag);
     if (it != frame.end()) *std::next(it) = value;
@@ -287,6 +288,14 @@ TEST(Checkpoint, ACheckpointOfOtherSettingsOrDamagedIsRefusedWithOneLine) {
   refused_with(saved, resume("--spp", "512"), "its spp is 1024, here 512");
   refused_with(saved, resume("--seed", "7"), "its seed is");
   refused_with(saved, resume("--width", "40"), "its width is");
+  // Another scene: the Cornell box with a comment more in its OBJ, the same
+  // geometry but other inputs.
+  fs::copy(test::assets_dir() / "cornell-box", side / "other", fs::copy_options::recursive);
+  test::write_file(side / "other" / "cornell_box.obj",
+                   test::read_file(side / "other" / "cornell_box.obj") + "# another scene's\n");
+  scene = (side / "other" / "scene.json").string();
+  refused_with(saved, resume(), "its input_hash is");
+  scene = cornell();
   // Cut short, and one byte changed.
   const std::string cut = saved.substr(0, saved.size() / 2);
   test::write_file(checkpoint, cut);
