@@ -226,8 +226,8 @@ std::vector<std::string> checkpointed_frame() {
 
 /// Leaves in `dir` the checkpoint of a render of checkpointed_frame()
 /// stopped by Ctrl-C after 4 passes (and its image of those passes).
-void leave_a_checkpoint(const fs::path& dir, const fs::path& passes_file) {
-  auto flags = checkpointed_frame();
+void leave_a_checkpoint(const fs::path& dir, const fs::path& passes_file,
+                        std::vector<std::string> flags = checkpointed_frame()) {
   flags.insert(flags.end(), {"--checkpoint-every", "20ms"});
   const int status = interrupt_after(dir, passes_file, flags, 4);
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << "status " << status;
@@ -235,28 +235,34 @@ void leave_a_checkpoint(const fs::path& dir, const fs::path& passes_file) {
 }
 
 TEST(Checkpoint, AResumedRenderEndsWithTheImageAndCountsOfARenderNotStopped) {
-  test::TempDir tmp, side, ref;
-  auto args = std::vector<std::string>{"render", cornell(), "--out", (ref / "x.exr").string(), "--report",
-                                       (ref / "x.json").string(), "--quiet"};
-  const auto frame = checkpointed_frame();
-  args.insert(args.end(), frame.begin(), frame.end());
-  const auto one_pass = test::run_kappa(args);
-  ASSERT_EQ(one_pass.exit_code, 0) << one_pass.std_err;
-  leave_a_checkpoint(tmp.path(), side / "passes");
-  args = {"render", cornell(), "--out", (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(), "--quiet",
-          "--resume"};
-  args.insert(args.end(), frame.begin(), frame.end());
-  const auto resumed = test::run_kappa(args);
-  ASSERT_EQ(resumed.exit_code, 0) << resumed.std_err;
-  EXPECT_TRUE(test::bitwise_equal(test::read_exr_file(tmp / "x.exr").pixels, test::read_exr_file(ref / "x.exr").pixels));
-  const auto a = nlohmann::json::parse(test::read_file(ref / "x.json"));
-  const auto b = nlohmann::json::parse(test::read_file(tmp / "x.json"));
-  EXPECT_GE(b["render"]["resumed_passes"].get<int>(), 1);
-  EXPECT_GT(b["render"]["passes"].get<int>(), b["render"]["resumed_passes"].get<int>());
-  for (const char* key : {"spp", "rays", "nonfinite_samples"}) EXPECT_EQ(b["render"][key], a["render"][key]) << key;
-  EXPECT_EQ(counts_of(b["rays"]), counts_of(a["rays"]));
-  EXPECT_EQ(b["stats"], a["stats"]);
-  EXPECT_FALSE(fs::exists(tmp / "x.exr.checkpoint")) << "a finished render's checkpoint is removed";
+  // A render of --spp (the reference one pass), and one of a noise target
+  // with --adaptive (13 passes; the checkpoint keeps the retired pixels).
+  const std::vector<std::string> adaptive = {"--width", "48", "--height", "32", "--target-relmse", "0.0005", "--adaptive",
+                                             "--stats", "on", "--threads", "1", "--occluder-cache", "off"};
+  for (const auto& frame : {checkpointed_frame(), adaptive}) {
+    SCOPED_TRACE(frame[5]);
+    test::TempDir tmp, side, ref;
+    auto args = std::vector<std::string>{"render", cornell(), "--out", (ref / "x.exr").string(), "--report",
+                                         (ref / "x.json").string(), "--quiet"};
+    args.insert(args.end(), frame.begin(), frame.end());
+    const auto not_stopped = test::run_kappa(args);
+    ASSERT_EQ(not_stopped.exit_code, 0) << not_stopped.std_err;
+    leave_a_checkpoint(tmp.path(), side / "passes", frame);
+    args = {"render", cornell(), "--out", (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(), "--quiet",
+            "--resume"};
+    args.insert(args.end(), frame.begin(), frame.end());
+    const auto resumed = test::run_kappa(args);
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.std_err;
+    EXPECT_TRUE(test::bitwise_equal(test::read_exr_file(tmp / "x.exr").pixels, test::read_exr_file(ref / "x.exr").pixels));
+    const auto a = nlohmann::json::parse(test::read_file(ref / "x.json"));
+    const auto b = nlohmann::json::parse(test::read_file(tmp / "x.json"));
+    EXPECT_GE(b["render"]["resumed_passes"].get<int>(), 1);
+    EXPECT_GT(b["render"]["passes"].get<int>(), b["render"]["resumed_passes"].get<int>());
+    for (const char* key : {"spp", "rays", "nonfinite_samples"}) EXPECT_EQ(b["render"][key], a["render"][key]) << key;
+    EXPECT_EQ(counts_of(b["rays"]), counts_of(a["rays"]));
+    EXPECT_EQ(b["stats"], a["stats"]);
+    EXPECT_FALSE(fs::exists(tmp / "x.exr.checkpoint")) << "a finished render's checkpoint is removed";
+  }
 }
 
 TEST(Checkpoint, ACheckpointOfOtherSettingsOrDamagedIsRefusedWithOneLine) {
