@@ -176,15 +176,32 @@ FrameAccelerator build_as_the_writer_chooses(FrameSplit& split, const Scene& sce
 /// The settings a checkpoint must have been made with to be resumed here:
 /// the render record's, which decide the image and the counts, less the
 /// scene's path (its inputs' hash stands for it, wherever it is run from)
-/// and the time budget (a resumed render may be given more time), and the
-/// camera.
+/// and the time budget (a resumed render may be given more time); with the
+/// camera and the occluder cache added (the cache decides which shadow rays
+/// walk, so the counts).
 nlohmann::ordered_json checkpoint_settings(const RenderOptions& options, const Scene& scene, const Accelerator& accel,
                                            const Budget& budget) {
   nlohmann::ordered_json settings = to_json(render_record(options, scene, resolution_text(accel), options.spp, budget));
   settings.erase("scene");
   settings.erase("time_budget");
   settings["camera"] = options.camera;
+  settings["occluder_cache"] = options.occluder_cache;
   return settings;
+}
+
+/// The checkpoint beside the image is a plain file Kappa writes, replaces
+/// and removes: anything else there (a link, a pipe, a device, a folder) is
+/// refused rather than written through, blocked on or removed. Without
+/// --resume, a checkpoint already there is one a stopped render left: a new
+/// render would write over it at its first save.
+void refuse_checkpoint_path(const std::filesystem::path& file, bool resume) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::symlink_status(file, ec);
+  if (ec || status.type() == std::filesystem::file_type::not_found) return;
+  if (status.type() != std::filesystem::file_type::regular)
+    throw InputError(file.string() + ": not a plain file, where the render keeps its checkpoint (move it away)");
+  if (!resume)
+    throw InputError(file.string() + ": the checkpoint of a render stopped before: --resume to go on from it, or remove it");
 }
 
 /// A file's bytes, or InputError saying why not.
@@ -263,6 +280,7 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
   ClaimedOutputs claimed = agreed_step(split, [&] {
     ClaimedOutputs c;
     if (!writer) return c;
+    if (checkpoints) refuse_checkpoint_path(checkpoint_file, options.resume);
     c.image = std::make_unique<AtomicOutput>(out_path, OutputKind::image);
     c.report = optional_output(options.report);
     c.cell_map = optional_output(options.cell_map, OutputKind::image);
@@ -480,7 +498,13 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
   // A finished render's checkpoint has served; an interrupted one's is kept
   // (its image has the completed passes, the checkpoint the passes to go on from).
   // The writer's alone: it saved it, and only once its outputs are committed.
-  if (checkpoints && !interrupted && writer) {
+  // A resumed render that added no pass (given less than the checkpoint's
+  // settings allowed, or none left) keeps it: its passes may yet be wanted.
+  const bool added_none = options.resume && result.passes <= result.resumed_passes;
+  if (checkpoints && !interrupted && writer && added_none)
+    warning_log().add(checkpoint_file.string() + ": the resumed render added no pass to the checkpoint's " +
+                      std::to_string(result.resumed_passes) + " (a time budget spent, or not given again?): it is kept");
+  if (checkpoints && !interrupted && writer && !added_none) {
     std::error_code ec;
     std::filesystem::remove(checkpoint_file, ec);
     if (ec) warning_log().add(checkpoint_file.string() + ": the finished render's checkpoint was not removed: " + ec.message());

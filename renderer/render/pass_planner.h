@@ -59,7 +59,8 @@ class PassPlanner {
   /// "spp", "time-budget", "target-relmse", "converged" (every pixel
   /// retired), or "" while running.
   const std::string& stop_reason() const { return m_stop_reason; }
-  /// Seconds since the first pass began.
+  /// Seconds since the first pass began, with a resumed render's time
+  /// spent before its checkpoint (resume).
   double elapsed() const;
   /// A render resumed from a checkpoint: `elapsed_s` of its time budget
   /// already spent. Its next pass is sized as a first one where time sizes

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/input_error.h"
 #include "core/thread_limit.h"
 #include "renderer/render/frame_progress.h"
 #include "renderer/render/frames.h"
@@ -43,7 +44,7 @@ RenderResult render_counting_with(const Scene& scene, const Walker& grid, const 
     plan = every == 0 ? PerCellPlan{PerCell::no, 1, 0, plan.note}
                       : plan_per_cell(n, sets, std::uint64_t(active_threads()), every, grid.bytes(), settings.stats_max_bytes);
     if (every != 0 && (plan.mode == PerCell::no || plan.every != every))
-      throw std::runtime_error("per-cell statistics: the checkpoint counted 1 path in " + std::to_string(every) +
+      throw InputError("per-cell statistics: the checkpoint counted 1 path in " + std::to_string(every) +
                                " per cell, which this run cannot within --grid-max-bytes");
   }
   if (TileSchedule* const split = settings.tiles) {

@@ -18,7 +18,8 @@ struct Pilot;
 /// sample each). Queries, not the pilot's seconds: timed, a 1-sample path
 /// carries the frame's first page faults and preemptions, and the predicted
 /// costs' (Pearson) correlation with the tiles' measured seconds was 0.04 on Sponza
-/// (512², 2 ranks), 0.45 on the bunny; counted, 0.72–0.84 and 0.90. Empty when
+/// (512², 2 ranks), 0.45 on the bunny; counted, 0.72–0.84 and 0.90 (the
+/// dragon 0.86). Empty when
 /// the pilot counted no pixel.
 std::vector<double> predicted_tile_costs(const Pilot& pilot, int width, int height);
 

@@ -227,9 +227,9 @@ std::vector<std::string> checkpointed_frame() {
 /// Leaves in `dir` the checkpoint of a render of checkpointed_frame()
 /// stopped by Ctrl-C after 4 passes (and its image of those passes).
 void leave_a_checkpoint(const fs::path& dir, const fs::path& passes_file,
-                        std::vector<std::string> flags = checkpointed_frame()) {
+                        std::vector<std::string> flags = checkpointed_frame(), int passes = 4) {
   flags.insert(flags.end(), {"--checkpoint-every", "20ms"});
-  const int status = interrupt_after(dir, passes_file, flags, 4);
+  const int status = interrupt_after(dir, passes_file, flags, passes);
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << "status " << status;
   ASSERT_TRUE(fs::exists(dir / "x.exr.checkpoint"));
 }
@@ -294,6 +294,7 @@ TEST(Checkpoint, ACheckpointOfOtherSettingsOrDamagedIsRefusedWithOneLine) {
   refused_with(saved, resume("--spp", "512"), "its spp is 1024, here 512");
   refused_with(saved, resume("--seed", "7"), "its seed is");
   refused_with(saved, resume("--width", "40"), "its width is");
+  refused_with(saved, resume("--occluder-cache", "on"), "its occluder_cache is \"off\", here \"on\"");
   // Another scene: the Cornell box with a comment more in its OBJ, the same
   // geometry but other inputs.
   fs::copy(test::assets_dir() / "cornell-box", side / "other", fs::copy_options::recursive);
@@ -328,6 +329,49 @@ TEST(Checkpoint, ACheckpointOfOtherSettingsOrDamagedIsRefusedWithOneLine) {
   const auto dash = test::run_kappa({"render", cornell(), "--out", "-", "--checkpoint-every", "1s", "--quiet"});
   EXPECT_EQ(dash.exit_code, 2);
   EXPECT_NE(dash.std_err.find("needs the image to be a file"), std::string::npos) << dash.std_err;
+  // A new render where a stopped one left its checkpoint: refused, not written over.
+  test::write_file(checkpoint, saved);
+  std::vector<std::string> anew = {"render", cornell(), "--out", (tmp / "x.exr").string(), "--quiet",
+                                   "--checkpoint-every", "20ms"};
+  const auto frame = checkpointed_frame();
+  anew.insert(anew.end(), frame.begin(), frame.end());
+  refused_with(saved, test::run_kappa(anew), "the checkpoint of a render stopped before: --resume to go on from it");
+  // Anything but a plain file where the checkpoint goes: neither written
+  // through, nor read, nor removed.
+  fs::remove(checkpoint);
+  fs::create_directory(checkpoint);
+  refused(resume(), "not a plain file");
+  refused(test::run_kappa(anew), "not a plain file");
+  EXPECT_TRUE(fs::is_directory(checkpoint));
+  fs::remove(checkpoint);
+  test::write_file(side / "elsewhere", saved);
+  fs::create_symlink(side / "elsewhere", checkpoint);
+  refused(resume(), "not a plain file");
+  EXPECT_TRUE(fs::is_symlink(checkpoint));
+  EXPECT_TRUE(test::read_file(side / "elsewhere") == saved);
+}
+
+TEST(Checkpoint, AResumedRenderThatAddsNoPassKeepsItsCheckpoint) {
+  // A time budget's checkpoint (past 64 spp after 40 passes of at most
+  // 20 ms) resumed without the budget: the render's --spp, 64 by default,
+  // is reached already. Its image is written, and the checkpoint, whose
+  // passes another --time-budget would go on from, is kept.
+  test::TempDir tmp, side;
+  const std::vector<std::string> budgeted = {"--width", "48", "--height", "32", "--time-budget", "10m",
+                                             "--threads", "1", "--occluder-cache", "off"};
+  leave_a_checkpoint(tmp.path(), side / "passes", budgeted, 40);
+  const fs::path checkpoint = tmp / "x.exr.checkpoint";
+  const std::string saved = test::read_file(checkpoint);
+  const auto r = test::run_kappa({"render", cornell(), "--out", (tmp / "x.exr").string(), "--report",
+                                  (tmp / "x.json").string(), "--quiet", "--resume", "--width", "48", "--height",
+                                  "32", "--threads", "1", "--occluder-cache", "off"});
+  ASSERT_EQ(r.exit_code, 0) << r.std_err;
+  EXPECT_NE(r.std_err.find("the resumed render added no pass"), std::string::npos) << r.std_err;
+  const auto report = nlohmann::json::parse(test::read_file(tmp / "x.json"));
+  EXPECT_EQ(report["render"]["passes"], report["render"]["resumed_passes"]);
+  EXPECT_GE(report["render"]["spp"].get<int>(), 64);
+  ASSERT_TRUE(fs::exists(checkpoint));
+  EXPECT_TRUE(test::read_file(checkpoint) == saved);
 }
 
 }  // namespace

@@ -205,8 +205,8 @@ TEST(MpiRender, ThePilotPredictsWhichTilesCostMore) {
   // against each tile's cells and triangle tests in the frame (the cost
   // AOVs, counted, so the test does not depend on the machine's speed):
   // correlation 0.82 (-0.43 with the pilot's rows upside down). Against the
-  // tiles' seconds at 256 x 256, 8 spp, 2 ranks: 0.90 (and on Sponza 0.72,
-  // the dragon 0.86).
+  // tiles' seconds at 256 x 256, 8 spp, 2 ranks: 0.90 (and at 512 x 512 on
+  // Sponza 0.72-0.84, the dragon 0.86).
   test::TempDir dir;
   const std::string scene = (test::assets_dir() / "bunny-lowres" / "scene_lowres.json").string();
   const test::RunResult r =

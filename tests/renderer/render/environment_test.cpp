@@ -73,7 +73,9 @@ TEST(EnvironmentMap, SamplesFollowLuminanceTimesSinThetaByChiSquare) {
     observed[texel_of(s->wi, w, h)] += 1;
     // The density of the drawn direction, asked again, is the one the sample gave.
     mismatched_pdf += std::abs(env.pdf(s->wi) / s->pdf - 1.0f) > 1e-3f;
-    if (k < 1000) EXPECT_EQ(s->Le, env.Le(s->wi)) << k;
+    if (k < 1000) {
+      EXPECT_EQ(s->Le, env.Le(s->wi)) << k;
+    }
   }
   EXPECT_LE(mismatched_pdf, n / 1000);  // only at texel edges, by rounding
   // Pearson's chi-square, bins of expected count < 5 pooled.
