@@ -15,7 +15,7 @@ constexpr std::string_view kMagic = "kappa checkpoint 1\n";
 template <class T>
 void append(std::string& out, const std::vector<T>& values) {
   static_assert(std::is_trivially_copyable_v<T>);
-  out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+  if (!values.empty()) out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
 }
 
 template <class T>
@@ -23,7 +23,7 @@ std::vector<T> take(std::string_view& in, std::size_t count, const std::string& 
   static_assert(std::is_trivially_copyable_v<T>);
   if (count > in.size() / sizeof(T)) throw InputError(file + ": a damaged checkpoint (cut short)");
   std::vector<T> values(count);
-  std::memcpy(values.data(), in.data(), count * sizeof(T));
+  if (count > 0) std::memcpy(values.data(), in.data(), count * sizeof(T));  // an empty vector's data() may be null
   in.remove_prefix(count * sizeof(T));
   return values;
 }

@@ -152,7 +152,8 @@ TEST(ReportKeys, EveryDocumentedKeyIsInTheReports) {
   // kappa-mpi's own section, from one rank started without mpirun (MPI's
   // singleton); where kappa-mpi is not built, its keys are not asked for.
   const std::set<std::string> mpi_only = {"mpi", "ranks", "threads_per_rank", "per_rank", "rank", "host",
-                                          "tiles", "imbalance", "tile_size", "tile_seconds"};
+                                          "tiles", "imbalance", "tile_size", "tile_seconds", "first_pass_order",
+                                          "tile_predicted"};
 #ifdef KAPPA_MPI_BINARY
   const nlohmann::json mpi_render = [&] {
     const std::string cmd = test::shell_quote(KAPPA_MPI_BINARY) + " render " + test::shell_quote(scene) +
