@@ -352,14 +352,16 @@ TEST(Checkpoint, ACheckpointOfOtherSettingsOrDamagedIsRefusedWithOneLine) {
 }
 
 TEST(Checkpoint, AResumedRenderThatAddsNoPassKeepsItsCheckpoint) {
-  // A time budget's checkpoint (past 64 spp after 40 passes of at most
-  // 20 ms) resumed without the budget: the render's --spp, 64 by default,
-  // is reached already. Its image is written, and the checkpoint, whose
+  // A time budget's checkpoint resumed without the budget: the render's
+  // --spp, 64 by default, is reached already. Each pass adds a sample at
+  // least, and a checkpoint is saved every pass or two (passes of at most
+  // 20 ms, saved every 20 ms), so 100 passes are past 64 spp on any
+  // machine (40 were not under ASan: 1 spp a pass). Its image is written, and the checkpoint, whose
   // passes another --time-budget would go on from, is kept.
   test::TempDir tmp, side;
   const std::vector<std::string> budgeted = {"--width", "48", "--height", "32", "--time-budget", "10m",
                                              "--threads", "1", "--occluder-cache", "off"};
-  leave_a_checkpoint(tmp.path(), side / "passes", budgeted, 40);
+  leave_a_checkpoint(tmp.path(), side / "passes", budgeted, 100);
   const fs::path checkpoint = tmp / "x.exr.checkpoint";
   const std::string saved = test::read_file(checkpoint);
   const auto r = test::run_kappa({"render", cornell(), "--out", (tmp / "x.exr").string(), "--report",
