@@ -2,8 +2,8 @@
 # Render time with statistics off and on (median of REPEAT runs of the same
 # binary, interleaved so that drifts in machine load hit every variant), for
 # each CELL_SAMPLES value of --cell-sample, and optionally against a BASELINE
-# binary built without the stats module (cmake -DKAPPA_STATS=OFF):
-#   BASELINE=build-nostats/kappa CELL_SAMPLES="auto 1" [THREADS=1] tools/stats_overhead.sh [SCENE.json ...]
+# binary without the counting path (build/kappa-nostats, tools/check_baseline.sh):
+#   BASELINE=build/kappa-nostats CELL_SAMPLES="auto 1" [THREADS=1] tools/stats_overhead.sh [SCENE.json ...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 kappa="${KAPPA:-build/kappa}"

@@ -11,6 +11,7 @@
 #include "core/memory_need.h"
 #include "core/warning_log.h"
 #include "renderer/cli/accel_flags.h"
+#include "renderer/render/statistics_built.h"
 #include "renderer/version.h"
 
 namespace kappa {
@@ -94,6 +95,7 @@ void add_render_flags(CLI::App& render, RenderOptions& o, bool converge) {
     render.add_option("--aov", o.aov, "extra EXR channels: comma list of albedo, normal, depth, cost, variance, spp");
   }
   render.add_flag("-q,--quiet", o.quiet, "no progress bar, summary line or statistics table");
+  if (!statistics_built()) o.stats = "off";  // kappa-nostats: the only setting it has
   render.add_option("--stats", o.stats, "per ray class: rays, hits and time; with the grid also cells, tests and hits, per cell and in total")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();

@@ -41,11 +41,7 @@ struct RenderOptions {
   std::string out;              ///< default out/<scene name>.exr
   std::string aov;              ///< comma list of albedo, normal, depth, cost, variance, spp
   bool quiet = false;
-#ifdef KAPPA_NO_STATS
-  std::string stats = "off";    ///< a build without statistics (-DKAPPA_STATS=OFF) has only off
-#else
-  std::string stats = "on";     ///< per-class counters during the render: on | off
-#endif
+  std::string stats = "on";     ///< per-class counters during the render: on | off (kappa-nostats: off only)
   std::string report;           ///< per-frame JSON report path
   std::string cell_sample = "auto";  ///< per-cell counts for 1 path in N: auto | N
   std::string preview;          ///< --preview F.png|jpg|tif: an 8-bit sRGB picture beside the EXR

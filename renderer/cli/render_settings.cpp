@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "renderer/render/sampler_kind.h"
+#include "renderer/render/statistics_built.h"
 
 namespace kappa {
 
@@ -19,9 +20,8 @@ std::uint64_t parse_cell_sample(const std::string& text) {
 }
 
 RenderSettings render_settings_of(const RenderOptions& options, const AovSelection& aov) {
-#ifdef KAPPA_NO_STATS
-  if (options.stats == "on") throw InputError("--stats on: this kappa was built without statistics (-DKAPPA_STATS=OFF)");
-#endif
+  if (options.stats == "on" && !statistics_built())
+    throw InputError("--stats on: this is kappa-nostats, built without statistics (the overhead baseline); use kappa");
   RenderSettings settings;
   settings.spp = options.spp;
   settings.max_depth = options.max_depth;

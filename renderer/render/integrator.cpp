@@ -6,6 +6,7 @@
 #include "accel/dispatch.h"
 #include "renderer/render/frames.h"
 #include "renderer/render/occluder_cache.h"
+#include "renderer/render/statistics_built.h"
 
 namespace kappa {
 
@@ -17,7 +18,7 @@ RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSe
   RenderResult result = visit_accelerator(accel, [&](const auto& a) {
     using A = std::decay_t<decltype(a)>;
     cached = settings.occluder_cache && OccluderWalker<A>;
-#ifndef KAPPA_NO_STATS  // a build without statistics has no trace of them here
+#ifndef KAPPA_NO_STATS  // kappa-nostats has no trace of them: no call, so no counting code linked
     if (settings.stats) {
       if constexpr (CellWalker<A>) return render_counting(scene, a, settings, film, progress);
       else return render_counting_classes(scene, a, settings, film, progress);
@@ -28,6 +29,14 @@ RenderResult render(const Scene& scene, const Accelerator& accel, const RenderSe
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.occluder_cache = cached;
   return result;
+}
+
+bool statistics_built() {
+#ifdef KAPPA_NO_STATS
+  return false;
+#else
+  return true;
+#endif
 }
 
 }  // namespace kappa
