@@ -2,7 +2,13 @@
 # The results page (issue #16): runs the measurements and writes DIR/results.md and its plots in
 # DIR/results/ through tools/study_report.py.
 #
-#   tools/study.sh [--quick] [--out DIR]        (DIR defaults to the repo's docs/)
+#   tools/study.sh [--quick] [--draft] [--out DIR]        (DIR defaults to the repo's docs/)
+#
+# The page in docs/ is the committed one: written there only from a tree without uncommitted changes,
+# by a kappa built from that commit (`kappa --version` is HEAD's hash, not "-dirty"), and only if HEAD
+# and the tree are the same when the run ends; else the run is refused (exit 2) before it starts, or its
+# raw outputs are kept and the page is not written. --draft writes it anyway, marked as a draft at its
+# top; --out DIR writes elsewhere, with the commit and "plus uncommitted changes" in its header as ever.
 #
 # 1. kappa sweep on every scene: cost per ray against the grid's resolution, beside eq 10 and the
 #    extended model;
@@ -26,13 +32,15 @@ kappa="${KAPPA_BIN:-$repo/build/kappa}"
 python=/usr/bin/python3  # Debian's, with numpy and matplotlib (tools/setup.sh)
 command_line="tools/study.sh${*:+ $*}"
 quick=0
+draft=0
 out="$repo/docs"
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) quick=1 ;;
+    --draft) draft=1 ;;
     --out) [ $# -ge 2 ] || { echo "study.sh: --out needs a folder" >&2; exit 2; }; out="$2"; shift ;;
     -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
-    *) echo "study.sh: unknown argument '$1' (usage: tools/study.sh [--quick] [--out DIR])" >&2; exit 2 ;;
+    *) echo "study.sh: unknown argument '$1' (usage: tools/study.sh [--quick] [--draft] [--out DIR])" >&2; exit 2 ;;
   esac
   shift
 done
@@ -41,6 +49,29 @@ done
   { echo "study.sh: $python lacks numpy or matplotlib: run tools/setup.sh" >&2; exit 2; }
 mkdir -p "$out"
 out="$(cd "$out" && pwd)"
+
+# tree_state: HEAD's hash (12 digits) and, after a space, the number of files with uncommitted changes;
+# empty outside a git checkout.
+tree_state() {
+  local head changes
+  head=$(git -C "$repo" rev-parse --short=12 HEAD 2>/dev/null) || return 0
+  changes=$(git -C "$repo" status --porcelain --untracked-files=no | wc -l)
+  echo "$head $changes"
+}
+state_before="$(tree_state)"
+committed_page=0
+if [ "$draft" = 0 ] && [ "$(cd "$out" && pwd -P)" = "$(mkdir -p "$repo/docs" && cd "$repo/docs" && pwd -P)" ]; then
+  committed_page=1
+  refuse() { echo "study.sh: $1: docs/ takes only a page from a commit; pass --draft (the page then says it is a draft) or --out DIR" >&2; exit 2; }
+  [ -n "$state_before" ] || refuse "$repo is not a git checkout, so the page's commit is unknown"
+  read -r head changes <<< "$state_before"
+  if [ "$changes" != 0 ]; then
+    refuse "the tree has uncommitted changes ($changes files, first: $(git -C "$repo" status --porcelain --untracked-files=no | head -n 1 | cut -c4-)); commit them"
+  fi
+  version="$("$kappa" --version 2>/dev/null | head -n 1)" || version="(no --version)"
+  [ "$version" = "kappa $head" ] ||
+    refuse "$kappa says \"$version\", not \"kappa $head\": it is not built from this commit (tools/build.sh)"
+fi
 
 work="$(mktemp -d "${TMPDIR:-/tmp}/kappa-study.XXXXXX")"
 # STUDY_KEEP_WORK=1 keeps the raw outputs (to rerun tools/study_report.py --data on them).
@@ -202,8 +233,13 @@ for family in "${families[@]}"; do
 done
 
 end=$(date +%s)
+if [ "$committed_page" = 1 ] && [ "$(tree_state)" != "$state_before" ]; then
+  trap - EXIT  # the raw outputs are kept: tools/study_report.py --data can still write their page
+  echo "study.sh: the tree changed during the run (HEAD and changed files were \"$state_before\", now \"$(tree_state)\"): docs/ is left as it was; write the page elsewhere with: tools/study_report.py --data $work --out DIR" >&2
+  exit 2
+fi
 # The header's facts, passed through the environment so that no quoting in them can break the script.
-META_MODE="$mode" META_COMMAND="$command_line" META_OUT="$out" META_UPTIME_BEFORE="$uptime_before" \
+META_MODE="$mode" META_DRAFT="$draft" META_STATE="$state_before" META_COMMAND="$command_line" META_OUT="$out" META_UPTIME_BEFORE="$uptime_before" \
 META_SECONDS="$((end - start))" META_KAPPA="$kappa" META_SWEEP="${sweep_args[*]}" \
 META_KAPPA_ARGS="${kappa_args[*]}" META_MODEL_ARGS="${model_args[*]}" META_NS="${scaling_ns[*]}" \
 META_SPP="$scaling_spp" META_FAMILIES="${families[*]}" META_SCALING_ARGS="${scaling_args[*]}" \
@@ -221,8 +257,10 @@ meta = {
     "mode": e["META_MODE"], "command": e["META_COMMAND"], "out": e["META_OUT"],
     "restricted": e["META_RESTRICTED"].strip(),
     "date": sh("date", "-u", "+%Y-%m-%d %H:%M UTC"),
-    "git": sh("git", "rev-parse", "--short=12", "HEAD") or "unknown",
-    "git_dirty": bool(sh("git", "status", "--porcelain", "--untracked-files=no")),
+    "draft": e["META_DRAFT"] == "1",
+    # The tree as the run began (a committed page's is checked unchanged at its end).
+    "git": e["META_STATE"].split()[0] if e["META_STATE"] else "unknown",
+    "git_dirty": e["META_STATE"].split()[1] != "0" if e["META_STATE"] else False,
     "nproc": sh("nproc"), "cpu": cpu[0] if cpu else "unknown",
     "uptime_before": e["META_UPTIME_BEFORE"], "uptime_after": sh("uptime"),
     "seconds": int(e["META_SECONDS"]),

@@ -206,6 +206,9 @@ def header(page, meta, scenes, steps):
               "exponents in the scaling study, which are labelled as such."
               % (meta["command"], meta["mode"], meta["date"], meta["git"],
                  " plus uncommitted changes" if meta["git_dirty"] else "", meta["kappa_bin"]))
+    if meta.get("draft"):
+        page.para("**A draft** (`--draft`): not the committed results page, which comes from a clean commit and "
+                  "the kappa built from it.")
     if meta.get("restricted"):
         page.para("**A partial run**, restricted by `%s`: not the whole study." % meta["restricted"])
     page.add("- machine: %s, %s cores (`nproc`)" % (meta["cpu"], meta["nproc"]))
