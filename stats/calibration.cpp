@@ -59,6 +59,7 @@ nlohmann::ordered_json to_json(const Calibration& c, const CalibrationMeasuremen
   j["machine"] = c.machine;
   j["clock"] = c.clock;
   j["samples"] = c.samples;
+  if (c.probe_s > 0) j["machine_probe_s"] = c.probe_s;
   j["eq10"] = to_json(c.eq10);
   j["extended"] = to_json(c.extended);
   j["build"] = to_json(c.build);
@@ -130,6 +131,13 @@ std::optional<Calibration> load_calibration(const std::filesystem::path& file) {
   c.samples = j.value("samples", std::size_t(0));
   c.machine = j.value("machine", std::string());
   c.clock = j.value("clock", std::string());
+  // Optional (a calibration before it has none): what the machine probe took
+  // as this file was measured.
+  if (const auto probe = j.find("machine_probe_s"); probe != j.end()) {
+    if (!probe->is_number() || !std::isfinite(probe->get<double>()) || !(probe->get<double>() > 0))
+      throw InputError(file.string() + ": machine_probe_s is not a positive number of seconds");
+    c.probe_s = probe->get<double>();
+  }
   c.source = file.string();
   return c;
 }

@@ -31,6 +31,7 @@ struct Calibration {
   std::string machine;  ///< what it was measured on
   std::string clock;    ///< the QueryClock's source ("tsc", "steady_clock")
   std::string source;   ///< the file it was read from, or "built-in" (builtin_calibration.h)
+  double probe_s = 0;   ///< machine_probe()'s seconds as it was measured (machine_probe.h); 0 = unknown
 };
 
 /// Fits both models to the measurements. Throws std::runtime_error (an

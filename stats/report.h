@@ -16,7 +16,7 @@
 namespace kappa {
 
 /// Bumped once by each change of the report's keys (changelog: stats/README.md).
-inline constexpr int kReportSchemaVersion = 16;
+inline constexpr int kReportSchemaVersion = 17;
 
 /// A double, or null when it is undefined or not finite (never NaN in JSON).
 nlohmann::ordered_json number_or_null(std::optional<double> v);

@@ -21,6 +21,7 @@
 #include "renderer/scene/generated_scene.h"
 #include "renderer/scene/scene_loader.h"
 #include "stats/calibration.h"
+#include "stats/machine_probe.h"
 #include "stats/query_clock.h"
 
 namespace kappa {
@@ -235,12 +236,16 @@ int run_calibrate(const CalibrateOptions& options) {
   settings.spp = options.spp;
   settings.stats = true;
   settings.stats_max_bytes = options.build.max_bytes();
+  // The machine probe before and after the grid's passes: a render's report
+  // sets its own probes against their mean.
+  const double probe_before = machine_probe().seconds;
   for (int pass = 0; pass < options.repeat; ++pass)
     for (Frame& f : frames) {
       render_pass(f, settings);  // warms the caches; its times are dropped
       for (auto& s : f.seconds) s.pop_back();
       render_pass(f, settings);
     }
+  const double probe_after = machine_probe().seconds;
   std::vector<TimedLoad> measurements, grid2_measurements;
   for (Frame& f : frames)
     for (TimedLoad& m : measurements_of(f)) {
@@ -278,6 +283,7 @@ int run_calibrate(const CalibrateOptions& options) {
   fit(cal.grid2.build, grid2_builds, threads);
   cal.machine = machine_name() + ", " + std::to_string(threads) + " walking";
   cal.clock = QueryClock::get().source();
+  cal.probe_s = 0.5 * (probe_before + probe_after);
   std::printf("eq 10: T0 %.2f ns, Ts %.2f ns, Th %.2f ns (rms relative error %.1f %%)\n", cal.eq10.ns[0], cal.eq10.ns[1],
               cal.eq10.ns[2], 100 * cal.eq10.rms_relative_error);
   std::printf("extended:");
@@ -297,6 +303,7 @@ int run_calibrate(const CalibrateOptions& options) {
               100 * cal.grid2.traversal.rms_relative_error, grid2_measurements.size(), cal.grid2.build.ns[0],
               cal.grid2.build.ns[1], cal.grid2.build.ns[2], 100 * cal.grid2.build.rms_relative_error,
               grid2_builds.size());
+  std::printf("machine probe: %.2f ms before the grids' passes, %.2f ms after\n", 1e3 * probe_before, 1e3 * probe_after);
   std::printf("%zu measurements -> %s\n", cal.samples, out_path.c_str());
   write_and_commit(out, to_json(cal, {measurements, builds, naive, grid2_measurements, grid2_builds}).dump(2) + "\n");
   return 0;

@@ -47,6 +47,7 @@
 #include "renderer/version.h"
 #include "stats/builtin_calibration.h"
 #include "stats/calibration.h"
+#include "stats/machine_probe.h"
 
 namespace kappa {
 namespace {
@@ -336,6 +337,11 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
 
   const MemoryNeed frame_need("rendering the " + std::to_string(scene.width) + "x" + std::to_string(scene.height) +
                                   " frame", 0);
+  // The machine's speed just before and just after the frame, beside the
+  // cost model's predictions in the report (stats/machine_probe.h): only
+  // where the report has them, about 10 ms each.
+  const bool probe = writer && report_out && settings.stats;
+  const double probe_before_s = probe ? machine_probe().seconds : 0.0;
   // The last step every process agrees on before the tiles go out.
   Film film = agreed_step(split, [&] { return Film(scene.width, scene.height, aov); });
   if (split) split->rendering_begins();
@@ -438,6 +444,8 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
     result = render(scene, *accel, settings, film, [&bar](std::size_t done, std::size_t total) { bar.update(done, total); });
   }
   bar.finish();
+  result.probe_before_s = probe_before_s;
+  if (probe) result.probe_after_s = machine_probe().seconds;
   if (interrupted && result.passes == 0) {
     std::fprintf(stderr, "kappa: interrupted before a pass was complete: nothing written\n");
     return kInterruptedExitCode;  // the outputs' temporaries are removed as they go out of scope

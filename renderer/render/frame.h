@@ -90,6 +90,8 @@ struct RenderResult {
   std::string stop_reason;           ///< the planner's (PassPlanner::stop_reason), "" without one
   std::string path_variant;          ///< the integrator that ran (path_variant_name)
   bool occluder_cache = false;       ///< shadow rays went through the occluder cache (occluder_cache.h)
+  double probe_before_s = 0;         ///< machine_probe() just before the frame (stats/machine_probe.h), 0 if not run
+  double probe_after_s = 0;          ///< and just after it
 };
 
 /// Called after each finished tile with (tiles done, tiles in all); it must be

@@ -10,6 +10,25 @@ nlohmann::ordered_json relative_error(double predicted, double measured) {
   return measured > 0 ? nlohmann::ordered_json(predicted / measured - 1.0) : nlohmann::ordered_json();
 }
 
+/// The probe's mean around the frame over its time at calibration: how much
+/// slower (> 1) or faster the machine ran than when the constants were
+/// measured; 0 when either is unknown.
+double probe_speed_ratio(const RenderResult& result, const std::optional<Calibration>& calibration) {
+  if (!calibration || !(calibration->probe_s > 0) || !(result.probe_before_s > 0) || !(result.probe_after_s > 0))
+    return 0;
+  return 0.5 * (result.probe_before_s + result.probe_after_s) / calibration->probe_s;
+}
+
+nlohmann::ordered_json machine_probe_section(const RenderResult& result, const std::optional<Calibration>& calibration) {
+  if (!(result.probe_before_s > 0)) return nullptr;
+  const double ratio = probe_speed_ratio(result, calibration);
+  const auto or_null = [](double v) { return v > 0 ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); };
+  return {{"before_s", result.probe_before_s},
+          {"after_s", or_null(result.probe_after_s)},
+          {"calibration_s", calibration ? or_null(calibration->probe_s) : nlohmann::ordered_json()},
+          {"slowdown", ratio > 0 ? nlohmann::ordered_json(ratio - 1.0) : nlohmann::ordered_json()}};
+}
+
 }  // namespace
 
 nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triangles, const RenderResult& result,
@@ -60,6 +79,7 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
   j["clock"] = clock.source();
   j["measured_s"] = measured;
   j["capped_queries"] = capped;
+  j["machine_probe"] = machine_probe_section(result, calibration);
   j["eq10"] = nullptr;
   j["extended"] = nullptr;
   if (modelled) {
@@ -67,10 +87,16 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
     j["eq10"] = {{"T0_ns", e.ns[0]}, {"Ts_ns", e.ns[1]}, {"Th_ns", e.ns[2]}, {"predicted_s", eq10},
                  {"relative_error", relative_error(eq10, measured)}};
   }
-  if (extended_model)
+  if (extended_model) {
+    // The same prediction for the machine as fast as the probe found it
+    // around this frame: what is left is the model's error, not the minute's.
+    const double ratio = probe_speed_ratio(result, calibration);
     j["extended"] = {{"predicted_s", extended},
                      {"relative_error", relative_error(extended, measured)},
+                     {"relative_error_at_probe_speed",
+                      ratio > 0 ? relative_error(extended * ratio, measured) : nlohmann::ordered_json()},
                      {"constants", to_json(*extended_model)["constants"]}};
+  }
   j["per_class"] = std::move(per_class);
   return j;
 }

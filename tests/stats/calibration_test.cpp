@@ -122,6 +122,16 @@ TEST(Calibration, FileRoundTripAndErrors) {
   EXPECT_EQ(back->build.threads, 2);
   EXPECT_EQ(back->naive.ns, c.naive.ns);
   EXPECT_EQ(back->source, (tmp / "c.json").string());
+  EXPECT_EQ(back->probe_s, 0.0);  // none measured: none written, none read
+  c.probe_s = 0.0042;
+  test::write_file(tmp / "probe.json", to_json(c).dump());
+  EXPECT_EQ(load_calibration(tmp / "probe.json")->probe_s, 0.0042);
+  for (const char* bad : {"\"fast\"", "-1", "0"}) {
+    nlohmann::json j = to_json(c);
+    j["machine_probe_s"] = nlohmann::json::parse(bad);
+    test::write_file(tmp / "bad_probe.json", j.dump());
+    EXPECT_THROW(load_calibration(tmp / "bad_probe.json"), InputError) << bad;
+  }
   // A file of this format without the build model's constants (format 3's content) is not a calibration.
   nlohmann::json no_build = to_json(c);
   no_build.erase("build");

@@ -53,7 +53,7 @@ TEST(GltfCli, TheSameTrianglesAsObjAndAsGltfRenderBitwiseTheSameImage) {
 
 TEST(GltfCli, TheReportNamesTheGltfFileAndItsCounts) {
   const Rendered r = render(gltf_dir() / "primitives.gltf", {"--width", "16", "--height", "16"});
-  EXPECT_EQ(r.report["schema_version"], 16);
+  EXPECT_EQ(r.report["schema_version"], 17);
   ASSERT_EQ(r.report["gltf"].size(), 1u);
   const nlohmann::json& g = r.report["gltf"][0];
   EXPECT_NE(g["file"].get<std::string>().find("primitives.gltf"), std::string::npos);

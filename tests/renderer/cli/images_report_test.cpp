@@ -28,7 +28,7 @@ nlohmann::json render_report(const std::filesystem::path& scene, const std::vect
 
 TEST(ImagesReport, AnUntexturedRenderNeverLoadsOpenImageIo) {
   const nlohmann::json j = render_report(test::assets_dir() / "cornell-box" / "scene.json");
-  EXPECT_EQ(j["schema_version"], 16);
+  EXPECT_EQ(j["schema_version"], 17);
   EXPECT_EQ(j["images"]["module_loaded"], false);
   EXPECT_EQ(j["images"]["texture_maps"], 0);
   EXPECT_TRUE(j["images"]["texture_cache"].is_null());
