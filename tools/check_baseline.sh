@@ -2,7 +2,8 @@
 # Checks build/kappa-nostats, the statistics-free baseline that
 # tools/stats_overhead.sh times `--stats off` against: it is linked from
 # kappa's objects with the frame's dispatch compiled without the counting path
-# (renderer/CMakeLists.txt), so it must hold no counting code, trace the same
+# (renderer/CMakeLists.txt), so it must hold none of the render's counting
+# frames (render_counting*), refuse `calibrate` (whose measurements they are), trace the same
 # rays as kappa with --stats off for the same seed, and refuse --stats on.
 # Run by tools/test.sh after the tests.
 set -euo pipefail
@@ -20,7 +21,7 @@ if ! grep -q 'kappa::render_counting' "$tmp/kappa.nm"; then
   exit 1
 fi
 if grep -q 'kappa::render_counting' "$tmp/nostats.nm"; then
-  echo "check_baseline: build/kappa-nostats holds counting code: $(grep -m 1 'kappa::render_counting' "$tmp/nostats.nm" | cut -c1-160)" >&2
+  echo "check_baseline: build/kappa-nostats holds a counting frame: $(grep -m 1 'kappa::render_counting' "$tmp/nostats.nm" | cut -c1-160)" >&2
   exit 1
 fi
 scene=assets/cornell-box/scene.json
@@ -52,4 +53,12 @@ if [ "$code" -ne 2 ] || [ -e "$tmp/on.exr" ]; then
   echo "check_baseline: --stats on in the baseline exited $code (expected 2, no image)" >&2
   exit 1
 fi
-echo "check_baseline: kappa-nostats holds no counting code, traces kappa's $main_rays rays to the same image and refuses --stats on: $(head -n 1 "$tmp/err")"
+set +e
+build/kappa-nostats calibrate "$scene" --no-generated --out "$tmp/cal.json" >/dev/null 2>"$tmp/cal.err"
+code=$?
+set -e
+if [ "$code" -ne 2 ] || [ -e "$tmp/cal.json" ]; then
+  echo "check_baseline: calibrate in the baseline exited $code (expected 2, no file): $(head -n 1 "$tmp/cal.err")" >&2
+  exit 1
+fi
+echo "check_baseline: kappa-nostats holds no counting frame, refuses calibrate, traces kappa's $main_rays rays to the same image and refuses --stats on: $(head -n 1 "$tmp/err")"

@@ -6,7 +6,7 @@
 # least 1e5 rays. The runs take turns over the (scene, density) pairs, so the
 # machine's drift spreads over all of them. `uptime` before and after.
 #
-#   tools/cost_model_check.sh [--ratios] [-n RUNS] [-d 8,32,128] [-c CAL.json]
+#   tools/cost_model_check.sh [--ratios (first)] [-n RUNS] [-d 8,32,128] [-c CAL.json]
 #                             [-s SPP] [-f WxH] [SCENE.json ...]
 #
 # --ratios judges the model on what it is for, choosing: the candidates are
@@ -59,7 +59,8 @@ for d in "${dens[@]}"; do candidates+=("grid:$d"); done
 for ((r = 1; r <= runs; r++)); do
   for s in "${scenes[@]}"; do
     name=$(basename "$(dirname "$s")")
-    [ "$(basename "$s")" = scene.json ] || name="$name-$(basename "$s" .json)"
+    # As Kappa names the scene (Scene::name), which the calibration's labels begin with.
+    [ "$(basename "$s")" = scene.json ] || name="$(basename "$s" .json)"
     for c in "${candidates[@]}"; do
       accel=${c%%:*} d=${c#*:}
       tag=$accel${d:+-$d}
@@ -73,7 +74,8 @@ echo "uptime after:  $(uptime)"
 python=/usr/bin/python3
 [ -x "$python" ] || python=python3
 if [ "$ratios" = 1 ]; then
-  exec "$python" "$(dirname "$0")/cost_model_ratios.py" "$out" "$runs" "$cal"
+  "$python" "$(dirname "$0")/cost_model_ratios.py" "$out" "$runs" "$cal"  # not exec: the EXIT trap removes $out
+  exit
 fi
 "$python" - "$out" "$runs" <<'EOF'
 import glob, json, os, statistics, sys
@@ -81,6 +83,8 @@ out, runs = sys.argv[1], int(sys.argv[2])
 rows = {}
 for f in sorted(glob.glob(os.path.join(out, "*.json"))):
     name, tag, run = os.path.basename(f)[:-5].rsplit(".", 2)
+    if not tag.startswith("grid-"):
+        continue  # a --ratios run's grid2 reports, in a KEEP folder used for both
     rows.setdefault((name, float(tag.split("-")[1])), []).append(json.load(open(f)))
 def err(pred, meas):
     return pred / meas - 1 if meas > 0 else float("nan")

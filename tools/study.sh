@@ -233,13 +233,9 @@ for family in "${families[@]}"; do
 done
 
 end=$(date +%s)
-if [ "$committed_page" = 1 ] && [ "$(tree_state)" != "$state_before" ]; then
-  trap - EXIT  # the raw outputs are kept: tools/study_report.py --data can still write their page
-  echo "study.sh: the tree changed during the run (HEAD and changed files were \"$state_before\", now \"$(tree_state)\"): docs/ is left as it was; write the page elsewhere with: tools/study_report.py --data $work --out DIR" >&2
-  exit 2
-fi
+state_after="$(tree_state)"
 # The header's facts, passed through the environment so that no quoting in them can break the script.
-META_MODE="$mode" META_DRAFT="$draft" META_STATE="$state_before" META_COMMAND="$command_line" META_OUT="$out" META_UPTIME_BEFORE="$uptime_before" \
+META_MODE="$mode" META_DRAFT="$draft" META_STATE="$state_before" META_STATE_AFTER="$state_after" META_COMMAND="$command_line" META_OUT="$out" META_UPTIME_BEFORE="$uptime_before" \
 META_SECONDS="$((end - start))" META_KAPPA="$kappa" META_SWEEP="${sweep_args[*]}" \
 META_KAPPA_ARGS="${kappa_args[*]}" META_MODEL_ARGS="${model_args[*]}" META_NS="${scaling_ns[*]}" \
 META_SPP="$scaling_spp" META_FAMILIES="${families[*]}" META_SCALING_ARGS="${scaling_args[*]}" \
@@ -260,7 +256,9 @@ meta = {
     "draft": e["META_DRAFT"] == "1",
     # The tree as the run began (a committed page's is checked unchanged at its end).
     "git": e["META_STATE"].split()[0] if e["META_STATE"] else "unknown",
-    "git_dirty": e["META_STATE"].split()[1] != "0" if e["META_STATE"] else False,
+    # A tree that changed during the run counts as uncommitted changes.
+    "git_dirty": (e["META_STATE"].split()[1] != "0" or e["META_STATE_AFTER"] != e["META_STATE"])
+    if e["META_STATE"] else False,
     "nproc": sh("nproc"), "cpu": cpu[0] if cpu else "unknown",
     "uptime_before": e["META_UPTIME_BEFORE"], "uptime_after": sh("uptime"),
     "seconds": int(e["META_SECONDS"]),
@@ -274,6 +272,11 @@ meta = {
 with open(sys.argv[1], "w") as f:
     json.dump(meta, f, indent=1)
 EOF
+if [ "$committed_page" = 1 ] && [ "$state_after" != "$state_before" ]; then
+  trap - EXIT  # the raw outputs, meta.json included, are kept for tools/study_report.py --data
+  echo "study.sh: the tree changed during the run (HEAD and changed files were \"$state_before\", now \"$state_after\"): docs/ is left as it was; write the page elsewhere, marked \"plus uncommitted changes\", with: $python tools/study_report.py --data $work --out DIR" >&2
+  exit 2
+fi
 log "report"
 "$python" "$repo/tools/study_report.py" --data "$work" --out "$out"
 log "done: $out/results.md ($(($(date +%s) - start)) s)"

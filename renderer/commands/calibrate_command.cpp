@@ -8,6 +8,7 @@
 #include <numbers>
 #include <memory>
 #include <cstdio>
+#include <stdexcept>
 
 #include "accel/factory.h"
 #include "accel/grid.h"
@@ -18,6 +19,7 @@
 #include "renderer/io/atomic_file.h"
 #include "renderer/io/output_guard.h"
 #include "renderer/render/integrator.h"
+#include "renderer/render/statistics_built.h"
 #include "renderer/scene/generated_scene.h"
 #include "renderer/scene/scene_loader.h"
 #include "stats/calibration.h"
@@ -73,6 +75,7 @@ struct Frame {
 void render_pass(Frame& frame, const RenderSettings& settings) {
   Film film(frame.scene->width, frame.scene->height, AovSelection{});
   const RenderResult result = render(*frame.scene, *frame.grid, settings, film);
+  if (!result.counters) throw std::logic_error("calibrate: a frame rendered without its counters");
   for (std::size_t k = 0; k < kRenderClasses; ++k) {
     frame.totals[k] = result.counters->classes[k].totals;
     frame.seconds[k].push_back(QueryClock::get().seconds(result.counters->ticks[k]));
@@ -144,6 +147,9 @@ std::string machine_name() {
 }  // namespace
 
 int run_calibrate(const CalibrateOptions& options) {
+  // Its measurements are the counting frames' counts and times.
+  if (!statistics_built())
+    throw InputError("calibrate: this is kappa-nostats, built without statistics (the overhead baseline); use kappa");
   const std::filesystem::path out_path = options.out.empty() ? default_calibration_path() : std::filesystem::path(options.out);
   std::vector<std::string> files = options.scenes;
   if (files.empty()) {

@@ -341,9 +341,13 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
   // cost model's predictions in the report (stats/machine_probe.h): only
   // where the report has them, about 10 ms each.
   const bool probe = writer && report_out && settings.stats;
-  const double probe_before_s = probe ? machine_probe().seconds : 0.0;
-  // The last step every process agrees on before the tiles go out.
-  Film film = agreed_step(split, [&] { return Film(scene.width, scene.height, aov); });
+  double probe_before_s = 0;
+  // The last step every process agrees on before the tiles go out (the
+  // probe in it: should it fail, every rank stops, none waits).
+  Film film = agreed_step(split, [&] {
+    if (probe) probe_before_s = machine_probe().seconds;
+    return Film(scene.width, scene.height, aov);
+  });
   if (split) split->rendering_begins();
   ProgressBar bar(show_progress);
   begin_phase(bar.task(), "rendering", 0);

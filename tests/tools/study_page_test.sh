@@ -4,7 +4,9 @@
 # docs/results.md, it refuses a tree with uncommitted changes and a kappa not
 # built from HEAD (exit 2, docs/ untouched); with --draft, and from a clean
 # tree with HEAD's kappa, it writes the page (a tiny run: no scene, N = 100),
-# marked as a draft or not.
+# marked as a draft or not; a tree changed during the run leaves docs/ as it
+# was and keeps the raw outputs, from which tools/study_report.py writes the
+# page elsewhere, marked "plus uncommitted changes".
 # Usage: study_page_test.sh SOURCE_DIR KAPPA
 set -euo pipefail
 src="$1" kappa="$2"
@@ -51,6 +53,29 @@ set -e
 [ "$code" = 2 ] || fail "another commit's kappa: exit $code, not 2: $err"
 grep -q "not built from this commit" <<<"$err" || fail "another commit's kappa: said '$err'"
 page_unchanged "another commit's kappa"
+
+# A tree changed during the run (by its first render): docs/ untouched, the raw outputs kept and usable.
+cat > "$tmp/kappa-changes" <<WRAP
+#!/usr/bin/env bash
+if [ "\${1:-}" = --version ]; then echo "kappa $head"; exit 0; fi
+[ -e "$tmp/changed" ] || { echo "# changed mid-run" >> "$repo/tools/make_sphere.py"; touch "$tmp/changed"; }
+exec "$kappa" "\$@"
+WRAP
+chmod +x "$tmp/kappa-changes"
+mkdir -p "$tmp/work"
+set +e
+err=$(TMPDIR="$tmp/work" KAPPA_BIN="$tmp/kappa-changes" "$repo/tools/study.sh" --quick 2>&1 >/dev/null); code=$?
+set -e
+[ "$code" = 2 ] || fail "a tree changed during the run: exit $code, not 2: $(tail -n 3 <<<"$err")"
+grep -q 'the tree changed during the run' <<<"$err" || fail "a tree changed during the run: said '$(tail -n 1 <<<"$err")'"
+page_unchanged "a tree changed during the run"
+kept=$(sed -n 's/.*--data \([^ ]*\) --out DIR$/\1/p' <<<"$err")
+[ -f "$kept/meta.json" ] || fail "a tree changed during the run: no raw outputs kept at '$kept'"
+/usr/bin/python3 "$repo/tools/study_report.py" --data "$kept" --out "$tmp/elsewhere" >/dev/null 2>&1 ||
+  fail "the kept raw outputs do not make a page"
+grep -q "from commit \`$head\` plus uncommitted changes" "$tmp/elsewhere/results.md" ||
+  fail "the page from the kept outputs does not say 'plus uncommitted changes'"
+git -C "$repo" checkout -q -- tools
 
 # A clean tree and HEAD's kappa: the committed page, not marked as a draft.
 KAPPA_BIN="$tmp/kappa-head" "$repo/tools/study.sh" --quick 2>/dev/null || fail "a clean tree with HEAD's kappa failed"
