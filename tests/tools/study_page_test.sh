@@ -29,15 +29,22 @@ WRAP
 chmod +x "$tmp/kappa-head"
 export STUDY_SCENES=none STUDY_NS=100
 page_unchanged() { [ "$(cat "$repo/docs/results.md")" = "the committed page" ] || fail "$1: docs/results.md was written"; }
+# refused CASE KAPPA WORDS [VAR=VALUE ...]: `study.sh --quick` with that kappa (and environment) exits 2,
+# says WORDS and leaves docs/ as it was; what it said is left in $err.
+refused() {
+  local case="$1" bin="$2" words="$3" code
+  shift 3
+  set +e
+  err=$(env "$@" KAPPA_BIN="$bin" "$repo/tools/study.sh" --quick 2>&1 >/dev/null); code=$?
+  set -e
+  [ "$code" = 2 ] || fail "$case: exit $code, not 2: $(tail -n 3 <<<"$err")"
+  grep -qF -- "$words" <<<"$err" || fail "$case: said '$(tail -n 1 <<<"$err")'"
+  page_unchanged "$case"
+}
 
 # A changed tracked file: refused before any work.
 echo "# changed" >> "$repo/tools/make_scaling_scene.py"
-set +e
-err=$(KAPPA_BIN="$tmp/kappa-head" "$repo/tools/study.sh" --quick 2>&1 >/dev/null); code=$?
-set -e
-[ "$code" = 2 ] || fail "a dirty tree: exit $code, not 2: $err"
-grep -q 'uncommitted changes (1 files, first: tools/make_scaling_scene.py)' <<<"$err" || fail "a dirty tree: said '$err'"
-page_unchanged "a dirty tree"
+refused "a dirty tree" "$tmp/kappa-head" 'uncommitted changes (1 files, first: tools/make_scaling_scene.py)'
 
 # The same tree with --draft: the page is written, and says it is a draft.
 KAPPA_BIN="$tmp/kappa-head" "$repo/tools/study.sh" --quick --draft 2>"$tmp/draft.err" || fail "--draft on a dirty tree failed: $(tail -n 3 "$tmp/draft.err")"
@@ -47,12 +54,7 @@ git -C "$repo" checkout -q -- tools docs
 git -C "$repo" clean -qfd docs
 
 # A clean tree, but a kappa built from another commit (the real one): refused.
-set +e
-err=$(KAPPA_BIN="$kappa" "$repo/tools/study.sh" --quick 2>&1 >/dev/null); code=$?
-set -e
-[ "$code" = 2 ] || fail "another commit's kappa: exit $code, not 2: $err"
-grep -q "not built from this commit" <<<"$err" || fail "another commit's kappa: said '$err'"
-page_unchanged "another commit's kappa"
+refused "another commit's kappa" "$kappa" "not built from this commit"
 
 # A tree changed during the run (by its first render): docs/ untouched, the raw outputs kept and usable.
 cat > "$tmp/kappa-changes" <<WRAP
@@ -63,12 +65,7 @@ exec "$kappa" "\$@"
 WRAP
 chmod +x "$tmp/kappa-changes"
 mkdir -p "$tmp/work"
-set +e
-err=$(TMPDIR="$tmp/work" KAPPA_BIN="$tmp/kappa-changes" "$repo/tools/study.sh" --quick 2>&1 >/dev/null); code=$?
-set -e
-[ "$code" = 2 ] || fail "a tree changed during the run: exit $code, not 2: $(tail -n 3 <<<"$err")"
-grep -q 'the tree changed during the run' <<<"$err" || fail "a tree changed during the run: said '$(tail -n 1 <<<"$err")'"
-page_unchanged "a tree changed during the run"
+refused "a tree changed during the run" "$tmp/kappa-changes" "the tree changed during the run" TMPDIR="$tmp/work"
 kept=$(sed -n 's/.*--data \([^ ]*\) --out DIR$/\1/p' <<<"$err")
 [ -f "$kept/meta.json" ] || fail "a tree changed during the run: no raw outputs kept at '$kept'"
 /usr/bin/python3 "$repo/tools/study_report.py" --data "$kept" --out "$tmp/elsewhere" >/dev/null 2>&1 ||
