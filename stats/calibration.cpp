@@ -12,13 +12,28 @@ Calibration fit_calibration(std::span<const TimedLoad> measurements) {
   Calibration c;
   fit(c.eq10, measurements);
   fit(c.extended, measurements);
+  c.coherent = fit_coherent(measurements);
   c.samples = measurements.size();
   return c;
 }
 
+std::optional<TimeModel> fit_coherent(std::span<const TimedLoad> measurements) {
+  bool counted = false;
+  for (const TimedLoad& m : measurements) counted = counted || m.load.cold_cells > 0;
+  if (!counted) return std::nullopt;
+  TimeModel model = coherent_model(l2_cache_bytes());
+  try {
+    fit(model, measurements);
+  } catch (const std::runtime_error&) {
+    return std::nullopt;  // the cold steps do not vary apart from the other terms
+  }
+  return model;
+}
+
 namespace {
 
-nlohmann::ordered_json load_rows(std::span<const TimedLoad> measurements, const TimeModel* eq10, const TimeModel& extended) {
+nlohmann::ordered_json load_rows(std::span<const TimedLoad> measurements, const TimeModel* eq10, const TimeModel& extended,
+                                 const std::optional<TimeModel>& coherent) {
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (const TimedLoad& m : measurements) {
     const double r = m.load.rays;
@@ -31,9 +46,12 @@ nlohmann::ordered_json load_rows(std::span<const TimedLoad> measurements, const 
                                   {"tests_per_ray", m.load.tests / r},
                                   {"skips_per_ray", m.load.skips / r},
                                   {"hit_fraction", m.load.hits / r},
-                                  {"working_set_bytes", m.load.working_set_bytes}};
+                                  {"working_set_bytes", m.load.working_set_bytes},
+                                  {"cold_cells_per_ray", m.load.cold_cells / r},
+                                  {"cold_tests_per_ray", m.load.cold_tests / r}};
     if (eq10) row["eq10_ns_per_ray"] = eq10->seconds(m.load) / r * 1e9;
     row["extended_ns_per_ray"] = extended.seconds(m.load) / r * 1e9;
+    if (coherent) row["coherent_ns_per_ray"] = coherent->seconds(m.load) / r * 1e9;
     rows.push_back(std::move(row));
   }
   return rows;
@@ -65,7 +83,10 @@ nlohmann::ordered_json to_json(const Calibration& c, const CalibrationMeasuremen
   j["build"] = to_json(c.build);
   j["naive"] = to_json(c.naive);
   j["grid2"] = to_json(c.grid2);
-  if (!measured.grid.empty()) j["measurements"] = load_rows(measured.grid, &c.eq10, c.extended);
+  if (c.coherent || c.grid2_coherent)
+    j["coherent"] = {{"grid", c.coherent ? to_json(*c.coherent) : nlohmann::ordered_json()},
+                     {"grid2", c.grid2_coherent ? to_json(*c.grid2_coherent) : nlohmann::ordered_json()}};
+  if (!measured.grid.empty()) j["measurements"] = load_rows(measured.grid, &c.eq10, c.extended, c.coherent);
   if (!measured.builds.empty()) j["builds"] = build_rows(measured.builds, c.build);
   if (!measured.naive.empty()) {
     j["naive_measurements"] = nlohmann::ordered_json::array();
@@ -78,7 +99,7 @@ nlohmann::ordered_json to_json(const Calibration& c, const CalibrationMeasuremen
                                          {"ns_per_ray", m.seconds / m.load.rays * 1e9},
                                          {"predicted_ns_per_ray", c.naive.seconds(m.load) / m.load.rays * 1e9}});
   }
-  if (!measured.grid2.empty()) j["grid2_measurements"] = load_rows(measured.grid2, nullptr, c.grid2.traversal);
+  if (!measured.grid2.empty()) j["grid2_measurements"] = load_rows(measured.grid2, nullptr, c.grid2.traversal, c.grid2_coherent);
   if (!measured.grid2_builds.empty()) j["grid2_builds"] = build_rows(measured.grid2_builds, c.grid2.build);
   return j;
 }
@@ -137,6 +158,21 @@ std::optional<Calibration> load_calibration(const std::filesystem::path& file) {
     if (!probe->is_number() || !std::isfinite(probe->get<double>()) || !(probe->get<double>() > 0))
       throw InputError(file.string() + ": machine_probe_s is not a positive number of seconds");
     c.probe_s = probe->get<double>();
+  }
+  // Optional too (schema 17): the coherent models, each null where
+  // the calibration could not fit it.
+  if (const auto coherent = j.find("coherent"); coherent != j.end()) {
+    const auto read = [&](const char* key, std::optional<TimeModel>& out) {
+      const nlohmann::json& m = coherent->is_object() ? coherent->value(key, nlohmann::json()) : nlohmann::json();
+      if (m.is_null() && coherent->is_object() && coherent->contains(key)) return;
+      TimeModel model = coherent_model(l2_cache_bytes());
+      if (!from_json(m, model))
+        throw InputError(file.string() + ": coherent." + key + " is not a coherent model (constants " +
+                         "each a number >= 0, and cache_bytes)");
+      out = std::move(model);
+    };
+    read("grid", c.coherent);
+    read("grid2", c.grid2_coherent);
   }
   c.source = file.string();
   return c;

@@ -32,7 +32,15 @@ struct Calibration {
   std::string clock;    ///< the QueryClock's source ("tsc", "steady_clock")
   std::string source;   ///< the file it was read from, or "built-in" (builtin_calibration.h)
   double probe_s = 0;   ///< machine_probe()'s seconds as it was measured (machine_probe.h); 0 = unknown
+  /// The coherent model (time_model.h) of the grid and of grid2, fitted
+  /// where the measurements counted coherence; none in the built-in
+  /// constants or a file from before it (optional in the file).
+  std::optional<TimeModel> coherent, grid2_coherent;
 };
+
+/// The coherent model fitted to `measurements`, or nullopt when none of
+/// them counted coherence (a cold step) or they do not determine it.
+std::optional<TimeModel> fit_coherent(std::span<const TimedLoad> measurements);
 
 /// Fits both models to the measurements. Throws std::runtime_error (an
 /// internal error: the measurements are Kappa's own) with fewer than 3, a

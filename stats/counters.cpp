@@ -20,6 +20,8 @@ ClassTotals& ClassTotals::operator+=(const ClassTotals& o) {
     level_refs[k] += o.level_refs[k];
   }
   predicted_fixed += o.predicted_fixed;
+  cold_cells += o.cold_cells;
+  cold_tests += o.cold_tests;
   return *this;
 }
 

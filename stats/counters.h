@@ -13,6 +13,7 @@
 #include "accel/recorder.h"
 #include "core/vec3.h"
 #include "cost_model.h"
+#include "recent_cells.h"
 #include "split_counts.h"
 
 namespace kappa {
@@ -36,6 +37,11 @@ struct ClassTotals {
   /// Sum over rays of the model's predicted cells (WalkCounts) in 1/1024
   /// units: an integer, so totals do not depend on how threads split rays.
   std::uint64_t predicted_fixed = 0;
+  /// Coherence (stats/recent_cells.h), counted by the render's counting
+  /// frames only (zero elsewhere): cell steps into cells the thread's recent
+  /// walks had not entered, and the triangle tests made in them.
+  std::uint64_t cold_cells = 0;
+  std::uint64_t cold_tests = 0;
 
   double predicted_cells() const { return double(predicted_fixed) / 1024.0; }
 
@@ -80,7 +86,9 @@ class CellCounters {
   template <PerCell Mode>
   class BasicTally {
    public:
-    explicit BasicTally(CellCounters& owner) : m_owner(owner), m_cells(owner.m_cells.get()) {}
+    /// With `recent`, each step is also counted cold or warm against it.
+    explicit BasicTally(CellCounters& owner, RecentCells* recent = nullptr)
+        : m_owner(owner), m_cells(owner.m_cells.get()), m_recent(recent) {}
     ~BasicTally() {
       if constexpr (Mode != PerCell::no) ++m_owner.m_per_cell_queries;
     }
@@ -89,13 +97,22 @@ class CellCounters {
 
     template <class BoxFn>
     void cell(std::uint64_t c, int /*level*/, BoxFn&& /*box*/) {
-      if constexpr (Mode != PerCell::no) count(m_cells->visits, c);
+      cell_known_cold(c, m_recent && m_recent->visit(c));
     }
-    void test() {}
+    /// A step whose coldness another tally found (TeeTally).
+    void cell_known_cold(std::uint64_t c, bool cold) {
+      if constexpr (Mode != PerCell::no) count(m_cells->visits, c);
+      m_cold = cold;
+      m_cold_cells += cold;
+    }
+    bool last_cold() const { return m_cold; }
+    void test() { m_cold_tests += m_cold; }
     void hit() {}
     /// The walk's own counts (kept in registers during the walk).
     void finish(const WalkCounts& w, const WalkSegment& segment) {
       ClassTotals& t = m_owner.totals;
+      t.cold_cells += m_cold_cells;
+      t.cold_tests += m_cold_tests;
       t.cells += w.cells;
       t.occupied_cells += w.occupied;
       t.refs += w.refs;
@@ -118,6 +135,9 @@ class CellCounters {
 
     CellCounters& m_owner;
     CellArrays* m_cells;
+    RecentCells* m_recent;
+    bool m_cold = false;  ///< the step last entered was cold
+    std::uint64_t m_cold_cells = 0, m_cold_tests = 0;
   };
   /// Counts per cell into this thread's own arrays.
   using Tally = BasicTally<PerCell::own>;
@@ -131,13 +151,16 @@ class CellCounters {
   template <PerCell Mode>
   class TeeTally {
    public:
-    TeeTally(CellCounters& a, CellCounters& b) : m_a(a), m_b(b) {}
+    TeeTally(CellCounters& a, CellCounters& b, RecentCells* recent = nullptr) : m_a(a, recent), m_b(b) {}
     template <class BoxFn>
     void cell(std::uint64_t c, int level, BoxFn&& box) {
       m_a.cell(c, level, box);
-      m_b.cell(c, level, box);
+      m_b.cell_known_cold(c, m_a.last_cold());  // one step, looked up once
     }
-    void test() {}
+    void test() {
+      m_a.test();
+      m_b.test();
+    }
     void hit() {}
     void finish(const WalkCounts& w, const WalkSegment& segment) {
       m_a.finish(w, segment);

@@ -129,6 +129,16 @@ TimeModel extended_model(double cache_bytes) {
   return m;
 }
 
+TimeModel coherent_model(double cache_bytes) {
+  TimeModel m = extended_model(cache_bytes);
+  m.form = ModelForm::coherent;
+  m.name = "coherent";
+  m.terms.push_back("Ts_cold");
+  m.terms.push_back("Th_cold");
+  m.ns.assign(m.terms.size(), 0.0);
+  return m;
+}
+
 std::vector<double> TimeModel::features_per_ray(const QueryLoad& load) const {
   const double r = load.rays > 0 ? load.rays : 1.0;
   const double cells = load.cells / r, occupied = load.occupied / r, tests = load.tests / r;
@@ -143,6 +153,10 @@ std::vector<double> TimeModel::features_per_ray(const QueryLoad& load) const {
   f[kRenderClasses + 3] = load.hits / r;
   f[kRenderClasses + 4 + k] = cells * miss;
   f[2 * kRenderClasses + 4 + k] = tests * miss;
+  if (form == ModelForm::coherent) {
+    f[3 * kRenderClasses + 4] = load.cold_cells / r;
+    f[3 * kRenderClasses + 5] = load.cold_tests / r;
+  }
   return f;
 }
 
@@ -231,14 +245,14 @@ bool constants_from_json(const nlohmann::json& j, const std::vector<std::string>
 nlohmann::ordered_json to_json(const TimeModel& model) {
   nlohmann::ordered_json j = {{"constants", constants_json(model.terms, model.ns)},
                               {"rms_relative_error", model.rms_relative_error}};
-  if (model.form == ModelForm::extended) j["cache_bytes"] = model.cache_bytes;
+  if (model.form != ModelForm::eq10) j["cache_bytes"] = model.cache_bytes;
   return j;
 }
 
 bool from_json(const nlohmann::json& j, TimeModel& model) {
   if (!constants_from_json(j, model.terms, model.ns)) return false;
   model.rms_relative_error = j.value("rms_relative_error", 0.0);
-  if (model.form == ModelForm::extended) {
+  if (model.form != ModelForm::eq10) {
     if (!j.contains("cache_bytes") || !j["cache_bytes"].is_number()) return false;
     model.cache_bytes = j["cache_bytes"].get<double>();
     if (!(model.cache_bytes > 0) || !std::isfinite(model.cache_bytes)) return false;

@@ -18,6 +18,12 @@
 //       1 - L2 / bytes: the chance that a step or a test waits for memory,
 //       which grows with a class's incoherence (camera rays share cache lines
 //       with their neighbours, deep bounce rays do not).
+//   coherent: the extended model and two terms more, per cold cell step and
+//     per test in a cold cell (stats/recent_cells.h): what a step costs when
+//     the walks just before it did not enter its cell. Only a render's
+//     counting frames count coherence, so only their reports (and the
+//     calibration, whose frames are such) have it; the choices' pilots and
+//     kappa sweep predict with the extended model.
 //
 // The form changed once after it was measured on ../shared/scenes (the
 // cost-model issue's note gives both forms' errors): the first (per-kind T0,
@@ -53,18 +59,20 @@ struct QueryLoad {
   double skips = 0;   ///< references skipped by the mailbox
   double hits = 0;    ///< rays that hit (any-hit: that were occluded)
   double working_set_bytes = 0;  ///< the accelerator's bytes plus the triangles'
+  double cold_cells = 0;  ///< cell steps that were cold (stats/recent_cells.h); 0 where not counted
+  double cold_tests = 0;  ///< tests made in cold cells
 };
 
 /// The two forms of model.
-enum class ModelForm { eq10, extended };
+enum class ModelForm { eq10, extended, coherent };
 
 /// A model linear in its constants: seconds = sum_i c_i f_i(load).
 struct TimeModel {
   ModelForm form = ModelForm::eq10;
-  std::string name;  ///< "eq10" or "extended", for messages
+  std::string name;  ///< "eq10", "extended" or "coherent", for messages
   std::vector<std::string> terms;  ///< the constants' names, in ns
   std::vector<double> ns;          ///< the fitted constants (ns per unit of each feature)
-  double cache_bytes = 0;          ///< L2 size the working-set terms are relative to (extended only)
+  double cache_bytes = 0;          ///< L2 size the working-set terms are relative to (not eq10)
   double rms_relative_error = 0;   ///< of the fit over its own measurements
 
   /// The features of `load`, per ray (the fit's rows).
@@ -77,6 +85,8 @@ struct TimeModel {
 TimeModel eq10_model();
 /// `cache_bytes`: the L2 cache the working-set terms are relative to.
 TimeModel extended_model(double cache_bytes);
+/// The extended model with the coherence terms Ts_cold and Th_cold.
+TimeModel coherent_model(double cache_bytes);
 
 /// This machine's L2 cache per core, from sysconf (1 MiB if unknown).
 double l2_cache_bytes();

@@ -7,7 +7,8 @@ DIR holds reports named SCENE.CANDIDATE.RUN.json (CANDIDATE: grid-8, grid-32, gr
 of a scene rendered in turn within each run. For each pair of candidates (A, B) and ray class, the error of
 one run is (predicted_A / predicted_B) / (measured_A / measured_B) - 1, with the extended model's predicted
 seconds and the class's measured seconds (the report's cost.per_class); a pair's error is its median over
-the runs. Per scene and class of at least 1e5 rays (in every candidate), a table gives the median and the
+the runs. The tables are given for the extended model, then for the coherent one (its cold-step terms,
+stats/recent_cells.h) when every report has its predictions. Per scene and class of at least 1e5 rays (in every candidate), a table gives the median and the
 worst |error| over the pairs, against the targets 0.10 and 0.25: one table for the pairs of grid resolutions
 (the choice of --grid-res model), one for grid against grid2 (a choice of --accel auto), one for all pairs.
 A scene the calibration measured (its measurements' labels begin with the scene's name) is marked so and
@@ -35,22 +36,22 @@ def load(folder):
     return reports
 
 
-def class_seconds(report, cls):
-    """(predicted, measured) seconds of one class, or None when either is missing or not positive."""
+def class_seconds(report, cls, model):
+    """(predicted, measured) seconds of one class by `model`, or None when either is missing or not positive."""
     entry = report["cost"]["per_class"].get(cls)
     if not entry:
         return None
-    predicted, measured = entry.get("extended_s"), entry.get("measured_s")
+    predicted, measured = entry.get(model + "_s"), entry.get("measured_s")
     if not predicted or not measured or predicted <= 0 or measured <= 0:
         return None
     return predicted, measured
 
 
-def pair_error(runs_a, runs_b, cls):
+def pair_error(runs_a, runs_b, cls, model):
     """The median over the runs both candidates have of the run's ratio error, or None."""
     errors = []
     for run in sorted(set(runs_a) & set(runs_b)):
-        a, b = class_seconds(runs_a[run], cls), class_seconds(runs_b[run], cls)
+        a, b = class_seconds(runs_a[run], cls, model), class_seconds(runs_b[run], cls, model)
         if a and b:
             errors.append((a[0] / b[0]) / (a[1] / b[1]) - 1.0)
     return statistics.median(errors) if errors else None
@@ -88,15 +89,20 @@ def main():
     if not reports:
         print(f"cost_model_ratios: no report in {folder}", file=sys.stderr)
         sys.exit(2)
-    print(f"\nExtended model, ratio of two candidates' predicted seconds over the ratio measured in the same run, "
-          f"median of {runs} runs per pair; classes of at least {MIN_RAYS:g} rays.")
-    for title, of_kind in PAIR_KINDS:
-        table(reports, title, of_kind, in_sample)
+    models = ["extended"]
+    if all(r["cost"].get("coherent") for by_candidate in reports.values() for by_run in by_candidate.values()
+           for r in by_run.values()):
+        models.append("coherent")
+    for model in models:
+        print(f"\n## The {model} model\n\nThe ratio of two candidates' predicted seconds over the ratio measured in "
+              f"the same run, median of {runs} runs per pair; classes of at least {MIN_RAYS:g} rays.")
+        for title, of_kind in PAIR_KINDS:
+            table(reports, title, of_kind, in_sample, model)
 
 
-def table(reports, title, of_kind, in_sample):
+def table(reports, title, of_kind, in_sample, model):
     """One Markdown table of the pairs of one kind, and its summary line."""
-    print(f"\n### {title}\n")
+    print(f"\n### {title}, {model} model\n")
     print("| scene | class | rays (first candidate) | pairs | median \\|error\\| | worst \\|error\\| | worst pair (error) |")
     print("|---|---|---:|---:|---:|---:|---|")
     met = total = 0
@@ -112,7 +118,7 @@ def table(reports, title, of_kind, in_sample):
             for a, b in itertools.combinations(candidates, 2):
                 if not of_kind(a, b):
                     continue
-                e = pair_error(reports[scene][a], reports[scene][b], cls)
+                e = pair_error(reports[scene][a], reports[scene][b], cls, model)
                 if e is not None:
                     errors[(a, b)] = e
             if not errors:
@@ -129,7 +135,7 @@ def table(reports, title, of_kind, in_sample):
                 worst_overall = max(worst_overall, worst)
             print(f"| {shown} | {cls} | {first['rays'][cls]['count']} | {len(errors)} | {median:.3f} | {worst:.3f} | "
                   f"{worst_pair[0]} / {worst_pair[1]} ({errors[worst_pair]:+.3f}) |")
-    print(f"\n{met} of {total} scene-class rows out of the calibration meet the target (median |error| <= {TARGET_MEDIAN}, worst <= "
+    print(f"\n{model}: {met} of {total} scene-class rows out of the calibration meet the target (median |error| <= {TARGET_MEDIAN}, worst <= "
           f"{TARGET_WORST}); the worst |error| of any such pair: {worst_overall:.3f}")
 
 

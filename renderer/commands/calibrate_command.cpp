@@ -94,6 +94,8 @@ std::vector<TimedLoad> measurements_of(Frame& frame) {
     TimedLoad m;
     m.load = QueryLoad{RenderClass(k),          double(t.rays),          double(t.cells),         double(t.occupied_cells),
                        double(t.tests),     double(t.mailbox_skips), double(t.hits),          frame.working_set_bytes};
+    m.load.cold_cells = double(t.cold_cells);
+    m.load.cold_tests = double(t.cold_tests);
     m.seconds = s[s.size() / 2];
     m.label = frame.scene->name + " " + frame.structure + " " + kRenderClassNames[k];
     out.push_back(std::move(m));
@@ -286,6 +288,7 @@ int run_calibrate(const CalibrateOptions& options) {
   fit(cal.build, builds, threads);
   fit(cal.naive, naive);
   fit(cal.grid2.traversal, grid2_measurements);
+  cal.grid2_coherent = fit_coherent(grid2_measurements);
   fit(cal.grid2.build, grid2_builds, threads);
   cal.machine = machine_name() + ", " + std::to_string(threads) + " walking";
   cal.clock = QueryClock::get().source();
@@ -297,6 +300,15 @@ int run_calibrate(const CalibrateOptions& options) {
     std::printf(" %s %.2f ns%s", cal.extended.terms[i].c_str(), cal.extended.ns[i],
                 i + 1 < cal.extended.terms.size() ? "," : "");
   std::printf(" (rms relative error %.1f %%)\n", 100 * cal.extended.rms_relative_error);
+  for (const auto& [name, model] : {std::pair{"grid", &cal.coherent}, std::pair{"grid2", &cal.grid2_coherent}}) {
+    if (!*model) {
+      std::printf("coherent (%s): not determined by these measurements\n", name);
+      continue;
+    }
+    const TimeModel& m = **model;
+    std::printf("coherent (%s): Ts_cold %.2f ns, Th_cold %.2f ns (rms relative error %.1f %%)\n", name,
+                m.ns[m.ns.size() - 2], m.ns.back(), 100 * m.rms_relative_error);
+  }
   std::printf("grid build (%d threads): %.2f ns per triangle, %.2f ns per reference, %.3f ns per cell (rms relative "
               "error %.1f %% over %zu builds)\n",
               threads, cal.build.ns[0], cal.build.ns[1], cal.build.ns[2], 100 * cal.build.rms_relative_error,

@@ -273,7 +273,7 @@ class CountingQueries {
       if (m_path_per_cell && b.per_cell()) {
         result = walk_tee(c, b, r, f);
       } else {
-        CellCounters::TeeTally<PerCell::no> tally(c, b);
+        CellCounters::TeeTally<PerCell::no> tally(c, b, &m_recent);
         result = m_walker.closest_hit(r, tally, f);
       }
     });
@@ -318,9 +318,9 @@ class CountingQueries {
     ++c.totals.rays;
     m_clock.timed(k, [&] {
       if (m_path_per_cell) {
-        result = walk_per_cell<Result>(c, walk);
+        result = walk_per_cell<Result>(c, m_recent, walk);
       } else {
-        CellCounters::TotalsTally tally(c);
+        CellCounters::TotalsTally tally(c, &m_recent);
         result = walk(tally);
       }
     });
@@ -331,14 +331,14 @@ class CountingQueries {
   /// The rare per-cell walk (sampled paths), kept out of line so that the
   /// common totals-only walk gets the compiler's inlining.
   template <typename Result, typename Walk>
-  [[gnu::noinline]] static Result walk_per_cell(CellCounters& c, Walk& walk) {
-    CellCounters::BasicTally<SampledMode> tally(c);
+  [[gnu::noinline]] static Result walk_per_cell(CellCounters& c, RecentCells& recent, Walk& walk) {
+    CellCounters::BasicTally<SampledMode> tally(c, &recent);
     return walk(tally);
   }
 
   template <HitFilter F>
-  [[gnu::noinline]] std::optional<Hit> walk_tee(CellCounters& c, CellCounters& b, const Ray& r, const F& filter) const {
-    CellCounters::TeeTally<SampledMode> tally(c, b);
+  [[gnu::noinline]] std::optional<Hit> walk_tee(CellCounters& c, CellCounters& b, const Ray& r, const F& filter) {
+    CellCounters::TeeTally<SampledMode> tally(c, b, &m_recent);
     return m_walker.closest_hit(r, tally, filter);
   }
 
@@ -350,6 +350,10 @@ class CountingQueries {
   bool m_path_per_cell = false;
   bool m_occluder_cache;
   OccluderCache m_cache;
+  /// The cells this tile's walks entered lately (stats/recent_cells.h): one
+  /// table per tile's queries, so coherence is counted the same for any
+  /// thread count.
+  RecentCells m_recent;
 };
 
 }  // namespace kappa

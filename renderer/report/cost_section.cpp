@@ -43,20 +43,34 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
                                     : accel.kind() == AccelKind::grid  ? &calibration->extended
                                     : accel.kind() == AccelKind::grid2 ? &calibration->grid2.traversal
                                                                        : nullptr;
+  const std::optional<TimeModel>* coherent_model = !calibration                          ? nullptr
+                                                  : accel.kind() == AccelKind::grid  ? &calibration->coherent
+                                                  : accel.kind() == AccelKind::grid2 ? &calibration->grid2_coherent
+                                                                                     : nullptr;
+  const TimeModel* coherent = coherent_model && *coherent_model ? &**coherent_model : nullptr;
   const double working_set = double(accel.bytes()) + double(triangles * sizeof(Triangle));
 
-  double measured = 0, eq10 = 0, extended = 0;
+  double measured = 0, eq10 = 0, extended = 0, coherent_s = 0;
   std::uint64_t capped = 0;
   nlohmann::ordered_json per_class = nlohmann::ordered_json::object();
   for (std::size_t k = 0; k < kRenderClasses; ++k) {
     const ClassTotals& t = rc.classes[k].totals;
     const QueryLoad load{RenderClass(k),      double(t.rays),          double(t.cells), double(t.occupied_cells),
-                         double(t.tests), double(t.mailbox_skips), double(t.hits),  working_set};
+                         double(t.tests), double(t.mailbox_skips), double(t.hits),  working_set,
+                         double(t.cold_cells), double(t.cold_tests)};
     const double m = clock.seconds(rc.ticks[k]);
     measured += m;
     capped += rc.capped[k];
-    nlohmann::ordered_json c = {{"measured_s", m}, {"capped_queries", rc.capped[k]}, {"eq10_s", nullptr},
-                                {"extended_s", nullptr}};
+    const auto per_ray = [&](std::uint64_t v) {
+      return t.rays > 0 ? nlohmann::ordered_json(double(v) / double(t.rays)) : nlohmann::ordered_json();
+    };
+    nlohmann::ordered_json c = {{"measured_s", m},
+                                {"capped_queries", rc.capped[k]},
+                                {"cold_cells_per_ray", per_ray(t.cold_cells)},
+                                {"cold_tests_per_ray", per_ray(t.cold_tests)},
+                                {"eq10_s", nullptr},
+                                {"extended_s", nullptr},
+                                {"coherent_s", nullptr}};
     if (modelled) {
       const double e10 = calibration->eq10.seconds(load);
       eq10 += e10;
@@ -66,6 +80,11 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
       const double ext = extended_model->seconds(load);
       extended += ext;
       c["extended_s"] = ext;
+    }
+    if (coherent) {
+      const double coh = coherent->seconds(load);
+      coherent_s += coh;
+      c["coherent_s"] = coh;
     }
     per_class[kRenderClassNames[k]] = std::move(c);
   }
@@ -82,6 +101,7 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
   j["machine_probe"] = machine_probe_section(result, calibration);
   j["eq10"] = nullptr;
   j["extended"] = nullptr;
+  j["coherent"] = nullptr;
   if (modelled) {
     const TimeModel& e = calibration->eq10;
     j["eq10"] = {{"T0_ns", e.ns[0]}, {"Ts_ns", e.ns[1]}, {"Th_ns", e.ns[2]}, {"predicted_s", eq10},
@@ -96,6 +116,14 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
                      {"relative_error_at_probe_speed",
                       ratio > 0 ? relative_error(extended * ratio, measured) : nlohmann::ordered_json()},
                      {"constants", to_json(*extended_model)["constants"]}};
+  }
+  if (coherent) {
+    const double ratio = probe_speed_ratio(result, calibration);
+    j["coherent"] = {{"predicted_s", coherent_s},
+                     {"relative_error", relative_error(coherent_s, measured)},
+                     {"relative_error_at_probe_speed",
+                      ratio > 0 ? relative_error(coherent_s * ratio, measured) : nlohmann::ordered_json()},
+                     {"constants", to_json(*coherent)["constants"]}};
   }
   j["per_class"] = std::move(per_class);
   return j;

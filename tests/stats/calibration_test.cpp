@@ -67,6 +67,39 @@ TEST(Calibration, TheExtendedModelRecoversEveryTermOfAClosedFormCase) {
   EXPECT_NEAR(m.seconds(unseen) / truth.seconds(unseen), 1.0, 1e-9);
 }
 
+TEST(Calibration, TheCoherentModelRecoversItsColdStepTerms) {
+  // Times with a known cost per cold step and per test in a cold cell on top
+  // of the extended terms: the coherent fit returns both; measurements
+  // without a cold step have no coherent model.
+  const double cache = 1 << 20;
+  TimeModel truth = coherent_model(cache);
+  for (std::size_t k = 0; k < truth.ns.size(); ++k) truth.ns[k] = 1.0 + double((5 * k) % 7);
+  truth.ns[truth.ns.size() - 2] = 3.5;  // Ts_cold
+  truth.ns.back() = 9.25;               // Th_cold
+  std::vector<TimedLoad> samples;
+  int i = 0;
+  for (std::size_t c = 0; c < kRenderClasses; ++c)
+    for (double cells : {3.0, 30.0})
+      for (double occupied_share : {0.1, 0.6})
+        for (double tests : {2.0, 50.0})
+          for (double working_set : {0.5 * cache, 4 * cache, 300 * cache})
+            for (double cold_share : {0.05, 0.7}) {
+              TimedLoad m;
+              m.load = QueryLoad{RenderClass(c), 1000, 1000 * cells, 1000 * cells * occupied_share, 1000 * tests,
+                                 1000.0 * (1 + (i % 5)), 1000.0 * (i % 3) / 2.0, working_set,
+                                 1000 * cells * cold_share, 1000 * tests * cold_share * (i % 2 ? 0.5 : 1.0)};
+              m.seconds = truth.seconds(m.load);
+              samples.push_back(m);
+              ++i;
+            }
+  const std::optional<TimeModel> fitted = fit_coherent(samples);
+  ASSERT_TRUE(fitted);
+  EXPECT_EQ(fitted->terms.back(), "Th_cold");
+  for (std::size_t k = 0; k < truth.ns.size(); ++k) EXPECT_NEAR(fitted->ns[k], truth.ns[k], 1e-6) << fitted->terms[k];
+  for (TimedLoad& m : samples) m.load.cold_cells = m.load.cold_tests = 0;
+  EXPECT_FALSE(fit_coherent(samples));
+}
+
 TEST(Calibration, NoConstantComesOutNegative) {
   // Times that the free fit explains with T0 = -20 ns: the fit holds T0 at 0
   // and is then the best non-negative one, which for T0 = 0 is the least
@@ -126,6 +159,24 @@ TEST(Calibration, FileRoundTripAndErrors) {
   c.probe_s = 0.0042;
   test::write_file(tmp / "probe.json", to_json(c).dump());
   EXPECT_EQ(load_calibration(tmp / "probe.json")->probe_s, 0.0042);
+  // The coherent models: optional (none written, none read), each read back
+  // when present, a malformed one refused.
+  EXPECT_FALSE(load_calibration(tmp / "c.json")->coherent);
+  Calibration coherent = c;
+  coherent.coherent = coherent_model(1 << 20);
+  for (std::size_t k = 0; k < coherent.coherent->ns.size(); ++k) coherent.coherent->ns[k] = 0.25 + double(k);
+  test::write_file(tmp / "coherent.json", to_json(coherent).dump());
+  const auto coherent_back = load_calibration(tmp / "coherent.json");
+  ASSERT_TRUE(coherent_back && coherent_back->coherent);
+  EXPECT_EQ(coherent_back->coherent->ns, coherent.coherent->ns);
+  EXPECT_EQ(coherent_back->coherent->form, ModelForm::coherent);
+  EXPECT_FALSE(coherent_back->grid2_coherent);  // written as null
+  for (const char* bad : {R"({"grid": {"constants": {"Ts_ns": 1}}, "grid2": null})", R"("fast")", R"({"grid2": null})"}) {
+    nlohmann::json j = to_json(coherent);
+    j["coherent"] = nlohmann::json::parse(bad);
+    test::write_file(tmp / "bad_coherent.json", j.dump());
+    EXPECT_THROW(load_calibration(tmp / "bad_coherent.json"), InputError) << bad;
+  }
   for (const char* bad : {"\"fast\"", "-1", "0"}) {
     nlohmann::json j = to_json(c);
     j["machine_probe_s"] = nlohmann::json::parse(bad);
@@ -210,10 +261,13 @@ TEST(Calibration, CalibrateThenRenderReportsTheCost) {
   const auto report = nlohmann::json::parse(test::read_file(tmp / "x.json"));
   const auto& cost = report.at("cost");
   EXPECT_GT(cost.at("measured_s").get<double>(), 0.0);
-  for (const char* model : {"eq10", "extended"}) {
+  for (const char* model : {"eq10", "extended", "coherent"}) {
     EXPECT_GT(cost.at(model).at("predicted_s").get<double>(), 0.0) << model;
     EXPECT_TRUE(cost.at(model).at("relative_error").is_number()) << model;
   }
+  // The coherent model is the calibration's, over the frame's cold steps.
+  EXPECT_EQ(cost.at("coherent").at("constants"), calibration.at("coherent").at("grid").at("constants"));
+  EXPECT_GT(cost.at("per_class").at("camera").at("cold_cells_per_ray").get<double>(), 0.0);
   EXPECT_NE(r.std_err.find("s predicted"), std::string::npos) << r.std_err;
   // A named calibration that does not exist is an error, not a silent null.
   const auto missing = test::run_kappa({"render", scene, "--spp", "1", "--out", (tmp / "y.exr").string(),
