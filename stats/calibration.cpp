@@ -161,10 +161,12 @@ std::optional<Calibration> load_calibration(const std::filesystem::path& file) {
   }
   // Optional too (schema 17): the coherent models, each null where
   // the calibration could not fit it.
-  if (const auto coherent = j.find("coherent"); coherent != j.end()) {
+  if (const auto coherent = j.find("coherent"); coherent != j.end() && !coherent->is_null()) {
+    if (!coherent->is_object())
+      throw InputError(file.string() + ": coherent is not an object of the grid's and grid2's coherent models");
     const auto read = [&](const char* key, std::optional<TimeModel>& out) {
-      const nlohmann::json& m = coherent->is_object() ? coherent->value(key, nlohmann::json()) : nlohmann::json();
-      if (m.is_null() && coherent->is_object() && coherent->contains(key)) return;
+      const nlohmann::json m = coherent->value(key, nlohmann::json());
+      if (m.is_null() && coherent->contains(key)) return;  // calibrate could not fit it
       TimeModel model = coherent_model(l2_cache_bytes());
       if (!from_json(m, model))
         throw InputError(file.string() + ": coherent." + key + " is not a coherent model (constants " +

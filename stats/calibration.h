@@ -1,5 +1,5 @@
-// The cost model's machine constants: eq 10's T0, Ts, Th and the extended
-// model's terms (stats/time_model.h), fitted by `kappa calibrate` to the
+// The cost model's machine constants: eq 10's T0, Ts, Th, the extended
+// model's terms and the coherent model's (stats/time_model.h), fitted by `kappa calibrate` to the
 // traversal times of its own measurements, kept in a file beside the binary.
 #pragma once
 
@@ -19,7 +19,10 @@ namespace kappa {
 
 /// The calibration file's format; files of another one were made by another
 /// Kappa and are refused with a word to run `kappa calibrate` again.
-inline constexpr int kCalibrationFormat = 6;
+/// Format 7: the walks it timed look each cell up in the coherence table
+/// (stats/recent_cells.h), as the frames a report predicts do; a format-6
+/// file timed walks without it and would under-predict them.
+inline constexpr int kCalibrationFormat = 7;
 
 struct Calibration {
   TimeModel eq10 = eq10_model();
@@ -33,8 +36,8 @@ struct Calibration {
   std::string source;   ///< the file it was read from, or "built-in" (builtin_calibration.h)
   double probe_s = 0;   ///< machine_probe()'s seconds as it was measured (machine_probe.h); 0 = unknown
   /// The coherent model (time_model.h) of the grid and of grid2, fitted
-  /// where the measurements counted coherence; none in the built-in
-  /// constants or a file from before it (optional in the file).
+  /// where the measurements determine it; none in the built-in constants
+  /// (optional in the file: null, or absent as a whole).
   std::optional<TimeModel> coherent, grid2_coherent;
 };
 
@@ -42,7 +45,7 @@ struct Calibration {
 /// them counted coherence (a cold step) or they do not determine it.
 std::optional<TimeModel> fit_coherent(std::span<const TimedLoad> measurements);
 
-/// Fits both models to the measurements. Throws std::runtime_error (an
+/// Fits eq 10, the extended and the coherent model to the measurements. Throws std::runtime_error (an
 /// internal error: the measurements are Kappa's own) with fewer than 3, a
 /// non-positive time, or measurements that do not determine eq 10's three
 /// constants.

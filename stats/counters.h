@@ -38,7 +38,7 @@ struct ClassTotals {
   /// units: an integer, so totals do not depend on how threads split rays.
   std::uint64_t predicted_fixed = 0;
   /// Coherence (stats/recent_cells.h), counted by the render's counting
-  /// frames only (zero elsewhere): cell steps into cells the thread's recent
+  /// frames only (zero elsewhere): cell steps into cells the tile's recent
   /// walks had not entered, and the triangle tests made in them.
   std::uint64_t cold_cells = 0;
   std::uint64_t cold_tests = 0;

@@ -1,4 +1,4 @@
-// Which cells one thread's walks entered lately: the measure of coherence
+// Which cells one tile's walks entered lately: the measure of coherence
 // behind the coherent time model (stats/time_model.h). A cell step is
 // "cold" when the cell is not among the last cells this table remembers: a
 // direct-mapped table of 1,024 cells, about what the first-level cache holds
@@ -10,9 +10,13 @@
 // that made the extended model over-predict coherent rays on fine grids
 // (issue 50's note gives the evidence).
 //
-// A table lives in one tile's queries and starts empty with each tile, so
-// the counts depend on the tile's paths alone, not on which thread walked
-// which tile before: the same for any thread count.
+// A table lives in one tile's queries and starts empty with each tile in
+// each pass, so the counts depend on the tile's paths and the frame's passes
+// alone, not on which thread walked which tile before: the same for any
+// thread count or rank count. A frame cut into other passes (a checkpointed
+// or resumed render, whose passes follow the clock) counts a few more cold
+// steps at the passes' starts: its cold counts, like its occluder cache's,
+// are those of its passes.
 #pragma once
 
 #include <array>
@@ -29,7 +33,8 @@ class RecentCells {
   /// the table).
   bool visit(std::uint64_t c) {
     // Fibonacci hashing: neighbouring cells (consecutive indices) land in
-    // different slots.
+    // different slots, as do a row's or a slab's apart, but for strides that
+    // are multiples of 4,096 cells (tests/stats/recent_cells_test.cpp).
     const std::size_t slot = std::size_t((c * 0x9E3779B97F4A7C15ull) >> (64 - kSlotBits));
     const std::uint64_t tag = c + 1;  // 0 marks an empty slot
     const bool cold = m_tags[slot] != tag;

@@ -1,4 +1,4 @@
-// The two models of traversal time that `kappa calibrate` fits and a render's
+// The models of traversal time that `kappa calibrate` fits and a render's
 // report applies to its own counts (never to a time measured in the frame it
 // predicts):
 //
@@ -32,7 +32,7 @@
 // cache lines; this one was chosen by leave-one-scene-out error over the
 // calibration frames alone.
 //
-// Both models are linear in their constants, so both are fitted the same way:
+// All are linear in their constants, so all are fitted the same way:
 // least squares of the relative error over the calibration's measurements,
 // every constant non-negative (Lawson-Hanson).
 #pragma once
@@ -63,7 +63,7 @@ struct QueryLoad {
   double cold_tests = 0;  ///< tests made in cold cells
 };
 
-/// The two forms of model.
+/// The forms of model.
 enum class ModelForm { eq10, extended, coherent };
 
 /// A model linear in its constants: seconds = sum_i c_i f_i(load).
@@ -81,7 +81,7 @@ struct TimeModel {
   double seconds(const QueryLoad& load) const;
 };
 
-/// The two models, unfitted (all constants 0).
+/// The models, unfitted (all constants 0).
 TimeModel eq10_model();
 /// `cache_bytes`: the L2 cache the working-set terms are relative to.
 TimeModel extended_model(double cache_bytes);

@@ -13,7 +13,7 @@
 # the grid at each density and grid2, each run renders every candidate in
 # turn (so a slow minute falls on all of them), and for every pair (A, B) and
 # ray class the error is (predicted_A / predicted_B) / (measured_A /
-# measured_B) - 1 of the extended model, in that run; a pair's error is its
+# measured_B) - 1 of the extended model and of the coherent one, in that run; a pair's error is its
 # median over the runs. Per scene and class of at least 1e5 rays it prints
 # the median and the worst |error| over the pairs (target: 0.10 and 0.25), in
 # a table for grid resolutions, one for grid against grid2 and one for all;

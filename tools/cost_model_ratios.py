@@ -5,7 +5,7 @@
 
 DIR holds reports named SCENE.CANDIDATE.RUN.json (CANDIDATE: grid-8, grid-32, grid2, ...), every candidate
 of a scene rendered in turn within each run. For each pair of candidates (A, B) and ray class, the error of
-one run is (predicted_A / predicted_B) / (measured_A / measured_B) - 1, with the extended model's predicted
+one run is (predicted_A / predicted_B) / (measured_A / measured_B) - 1, with a model's predicted
 seconds and the class's measured seconds (the report's cost.per_class); a pair's error is its median over
 the runs. The tables are given for the extended model, then for the coherent one (its cold-step terms,
 stats/recent_cells.h) when every report has its predictions. Per scene and class of at least 1e5 rays (in every candidate), a table gives the median and the
@@ -93,6 +93,9 @@ def main():
     if all(r["cost"].get("coherent") for by_candidate in reports.values() for by_run in by_candidate.values()
            for r in by_run.values()):
         models.append("coherent")
+    else:
+        print("cost_model_ratios: no coherent tables: a report has no cost.coherent (its calibration file has no "
+              "coherent model: run kappa calibrate again)", file=sys.stderr)
     for model in models:
         print(f"\n## The {model} model\n\nThe ratio of two candidates' predicted seconds over the ratio measured in "
               f"the same run, median of {runs} runs per pair; classes of at least {MIN_RAYS:g} rays.")

@@ -86,7 +86,14 @@ int run_sweep(const SweepOptions& options) {
   inputs.push_back(calibration_path);
   refuse_outputs_over_inputs({options.json, options.plot}, inputs);
   JsonAndPlot outputs(options.json, options.plot, "sweep_plot.py");  // claimed, and matplotlib checked, now
-  std::optional<Calibration> calibration = load_calibration(calibration_path);
+  // One left beside the binary by an older Kappa is set aside with a word,
+  // as a render does; one named with --calibration is refused.
+  std::optional<Calibration> calibration;
+  if (options.calibration.empty() && calibration_of_another_format(calibration_path))
+    warning_log().add(calibration_path.string() +
+                      ": a calibration of another format, from another Kappa, is not used: run kappa calibrate again");
+  else
+    calibration = load_calibration(calibration_path);
   if (!calibration && !options.calibration.empty())
     throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
   const bool built_in = !calibration;

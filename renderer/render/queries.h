@@ -351,8 +351,8 @@ class CountingQueries {
   bool m_occluder_cache;
   OccluderCache m_cache;
   /// The cells this tile's walks entered lately (stats/recent_cells.h): one
-  /// table per tile's queries, so coherence is counted the same for any
-  /// thread count.
+  /// table per tile's queries in a pass, so coherence is counted the same
+  /// for any thread count.
   RecentCells m_recent;
 };
 

@@ -61,8 +61,11 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
     const double m = clock.seconds(rc.ticks[k]);
     measured += m;
     capped += rc.capped[k];
+    // Coherence is counted by the grids' counting walks alone: null for
+    // naive and Embree, whose frames enter no cells.
+    const bool cells = accel.kind() == AccelKind::grid || accel.kind() == AccelKind::grid2;
     const auto per_ray = [&](std::uint64_t v) {
-      return t.rays > 0 ? nlohmann::ordered_json(double(v) / double(t.rays)) : nlohmann::ordered_json();
+      return cells && t.rays > 0 ? nlohmann::ordered_json(double(v) / double(t.rays)) : nlohmann::ordered_json();
     };
     nlohmann::ordered_json c = {{"measured_s", m},
                                 {"capped_queries", rc.capped[k]},

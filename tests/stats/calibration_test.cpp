@@ -171,6 +171,16 @@ TEST(Calibration, FileRoundTripAndErrors) {
   EXPECT_EQ(coherent_back->coherent->ns, coherent.coherent->ns);
   EXPECT_EQ(coherent_back->coherent->form, ModelForm::coherent);
   EXPECT_FALSE(coherent_back->grid2_coherent);  // written as null
+  coherent.grid2_coherent = coherent.coherent;
+  coherent.grid2_coherent->ns.back() = 42;
+  test::write_file(tmp / "coherent2.json", to_json(coherent).dump());
+  const auto grid2_back = load_calibration(tmp / "coherent2.json");
+  ASSERT_TRUE(grid2_back && grid2_back->grid2_coherent);
+  EXPECT_EQ(grid2_back->grid2_coherent->ns, coherent.grid2_coherent->ns);
+  nlohmann::json null_coherent = to_json(coherent);
+  null_coherent["coherent"] = nullptr;  // as absent
+  test::write_file(tmp / "null_coherent.json", null_coherent.dump());
+  EXPECT_FALSE(load_calibration(tmp / "null_coherent.json")->coherent);
   for (const char* bad : {R"({"grid": {"constants": {"Ts_ns": 1}}, "grid2": null})", R"("fast")", R"({"grid2": null})"}) {
     nlohmann::json j = to_json(coherent);
     j["coherent"] = nlohmann::json::parse(bad);

@@ -28,6 +28,18 @@ TEST(RecentCells, AStepIsColdUntilItsCellWasEnteredAndAgainOnceEvicted) {
   for (std::uint64_t c = 5000; c < 5000 + RecentCells::kSlots / 4; ++c) fresh.visit(c);
   for (std::uint64_t c = 5000; c < 5000 + RecentCells::kSlots / 4; ++c) cold += fresh.visit(c);
   EXPECT_LE(cold, int(RecentCells::kSlots / 64)) << "neighbouring cells collide in the table";
+  // So do the cells of a walk along y or z, whose indices stride by a row or
+  // a slab of the grid (a mask of the low bits would put strides of 1,024
+  // and 65,536 in one slot). Multiples of 4,096 collide more (108 cold of
+  // 256 at 4,096): a slab of exactly such a size is rare, as the grid's
+  // resolution follows the scene's box.
+  for (const std::uint64_t stride : {64ull, 100ull, 1000ull, 1024ull, 65536ull}) {
+    RecentCells strided;
+    int strided_cold = 0;
+    for (std::uint64_t k = 0; k < RecentCells::kSlots / 4; ++k) strided.visit(k * stride);
+    for (std::uint64_t k = 0; k < RecentCells::kSlots / 4; ++k) strided_cold += strided.visit(k * stride);
+    EXPECT_LE(strided_cold, int(RecentCells::kSlots / 16)) << "cells " << stride << " apart collide in the table";
+  }
 }
 
 /// Each class's cold steps and cold tests per ray in a counting frame's report.
@@ -49,6 +61,19 @@ nlohmann::json cold_counts(const test::TempDir& tmp, const char* threads, const 
     }
   }
   return out;
+}
+
+TEST(RecentCells, NaiveCountsNoColdSteps) {
+  // No cells, no coherence: null, not a frame of perfectly coherent rays.
+  test::TempDir tmp;
+  const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
+  const auto r = test::run_kappa({"render", scene, "--spp", "1", "--width", "16", "--height", "16", "--accel", "naive",
+                                  "--stats", "on", "--out", (tmp / "x.exr").string(), "--report",
+                                  (tmp / "x.json").string(), "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.std_err;
+  const auto camera = nlohmann::json::parse(test::read_file(tmp / "x.json")).at("cost").at("per_class").at("camera");
+  EXPECT_TRUE(camera.at("cold_cells_per_ray").is_null()) << camera;
+  EXPECT_TRUE(camera.at("cold_tests_per_ray").is_null()) << camera;
 }
 
 TEST(RecentCells, AFramesColdStepsAreTheSameForAnyThreadCount) {

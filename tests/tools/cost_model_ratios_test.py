@@ -79,6 +79,13 @@ def main():
             if len(coherent) != 1 or coherent[0].count("coherent: 1 of 1 scene-class rows") != 3 \
                     or coherent[0].count("| s | camera | 262144 |") != 3 or "extended: 0 of 1" not in out:
                 failures.append(f"the coherent model's tables are not its own: {out}")
+            # One report without the coherent model (an older calibration's): no coherent tables, and a word why.
+            with open(os.path.join(both, "s.grid2.2.json"), "w") as f:
+                json.dump(report((1.5, 0.5)), f)
+            partial = subprocess.run(["/usr/bin/python3", os.path.join(repo, "tools", "cost_model_ratios.py"), both, "3"],
+                                     capture_output=True, text=True)
+            if "## The coherent model" in partial.stdout or "no coherent tables" not in partial.stderr:
+                failures.append(f"a report without the coherent model: {partial.stdout} {partial.stderr}")
         with tempfile.TemporaryDirectory() as empty:
             code = subprocess.run(["/usr/bin/python3", os.path.join(repo, "tools", "cost_model_ratios.py"), empty, "1"],
                                   capture_output=True).returncode
