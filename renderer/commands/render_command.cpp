@@ -22,6 +22,7 @@
 #include "core/memory_need.h"
 #include "core/thread_limit.h"
 #include "core/warning_log.h"
+#include "renderer/io/calibration_file.h"
 #include "renderer/cli/duration.h"
 #include "renderer/cli/interrupt.h"
 #include "renderer/cli/progress.h"
@@ -296,14 +297,7 @@ int run_render(const RenderOptions& options, FrameSplit* split) {
   // rebuild must not stop every render); one named with --calibration is
   // refused.
   std::optional<Calibration> calibration = agreed_step(split, [&] {
-    std::optional<Calibration> c;
-    if (options.calibration.empty() && calibration_of_another_format(calibration_path))
-      warning_log().add(calibration_path.string() +
-                        ": a calibration of another format, from another Kappa, is not used: run kappa calibrate again");
-    else
-      c = load_calibration(calibration_path);
-    if (!c && !options.calibration.empty())
-      throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
+    std::optional<Calibration> c = read_calibration_file(calibration_path, !options.calibration.empty());
     // Without a file, the constants fitted on the project's machines: the
     // report's predictions and --grid-res model work on a fresh clone, silently.
     if (!c) c = builtin_calibration();

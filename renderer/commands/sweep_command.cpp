@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/thread_limit.h"
 #include "core/warning_log.h"
+#include "renderer/io/calibration_file.h"
 #include "renderer/cli/progress.h"
 #include "renderer/cli/sweep_range.h"
 #include "renderer/io/atomic_file.h"
@@ -86,16 +87,7 @@ int run_sweep(const SweepOptions& options) {
   inputs.push_back(calibration_path);
   refuse_outputs_over_inputs({options.json, options.plot}, inputs);
   JsonAndPlot outputs(options.json, options.plot, "sweep_plot.py");  // claimed, and matplotlib checked, now
-  // One left beside the binary by an older Kappa is set aside with a word,
-  // as a render does; one named with --calibration is refused.
-  std::optional<Calibration> calibration;
-  if (options.calibration.empty() && calibration_of_another_format(calibration_path))
-    warning_log().add(calibration_path.string() +
-                      ": a calibration of another format, from another Kappa, is not used: run kappa calibrate again");
-  else
-    calibration = load_calibration(calibration_path);
-  if (!calibration && !options.calibration.empty())
-    throw InputError(options.calibration + ": calibration file not found (make one with kappa calibrate)");
+  std::optional<Calibration> calibration = read_calibration_file(calibration_path, !options.calibration.empty());
   const bool built_in = !calibration;
   if (built_in) calibration = builtin_calibration();
 

@@ -29,6 +29,18 @@ nlohmann::ordered_json machine_probe_section(const RenderResult& result, const s
           {"slowdown", ratio > 0 ? nlohmann::ordered_json(ratio - 1.0) : nlohmann::ordered_json()}};
 }
 
+/// A model's prediction of the frame beside its measurement, and the same
+/// prediction for the machine as fast as the probe found it around this
+/// frame (`ratio`, 0 if unknown): what is left is the model's error, not the
+/// minute's.
+nlohmann::ordered_json prediction_section(const TimeModel& model, double predicted, double measured, double ratio) {
+  return {{"predicted_s", predicted},
+          {"relative_error", relative_error(predicted, measured)},
+          {"relative_error_at_probe_speed",
+           ratio > 0 ? relative_error(predicted * ratio, measured) : nlohmann::ordered_json()},
+          {"constants", to_json(model)["constants"]}};
+}
+
 }  // namespace
 
 nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triangles, const RenderResult& result,
@@ -110,24 +122,9 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
     j["eq10"] = {{"T0_ns", e.ns[0]}, {"Ts_ns", e.ns[1]}, {"Th_ns", e.ns[2]}, {"predicted_s", eq10},
                  {"relative_error", relative_error(eq10, measured)}};
   }
-  if (extended_model) {
-    // The same prediction for the machine as fast as the probe found it
-    // around this frame: what is left is the model's error, not the minute's.
-    const double ratio = probe_speed_ratio(result, calibration);
-    j["extended"] = {{"predicted_s", extended},
-                     {"relative_error", relative_error(extended, measured)},
-                     {"relative_error_at_probe_speed",
-                      ratio > 0 ? relative_error(extended * ratio, measured) : nlohmann::ordered_json()},
-                     {"constants", to_json(*extended_model)["constants"]}};
-  }
-  if (coherent) {
-    const double ratio = probe_speed_ratio(result, calibration);
-    j["coherent"] = {{"predicted_s", coherent_s},
-                     {"relative_error", relative_error(coherent_s, measured)},
-                     {"relative_error_at_probe_speed",
-                      ratio > 0 ? relative_error(coherent_s * ratio, measured) : nlohmann::ordered_json()},
-                     {"constants", to_json(*coherent)["constants"]}};
-  }
+  const double ratio = probe_speed_ratio(result, calibration);
+  if (extended_model) j["extended"] = prediction_section(*extended_model, extended, measured, ratio);
+  if (coherent) j["coherent"] = prediction_section(*coherent, coherent_s, measured, ratio);
   j["per_class"] = std::move(per_class);
   return j;
 }
