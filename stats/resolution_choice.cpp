@@ -15,31 +15,9 @@
 #include "core/check.h"
 #include "core/input_error.h"
 #include "core/parallel.h"
+#include "pilot_replay.h"
 
 namespace kappa {
-namespace {
-
-/// Sums what each walk reports (accel/recorder.h), nothing per cell.
-struct WalkSums {
-  std::uint64_t cells = 0, occupied = 0, tests = 0, skips = 0;
-  template <class BoxFn>
-  void cell(std::uint64_t, int, BoxFn&&) {}
-  void test() {}
-  void hit() {}
-  void finish(const WalkCounts& c, const WalkSegment&) {
-    cells += c.cells;
-    occupied += c.occupied;
-    tests += c.tests;
-    skips += c.skips;
-  }
-};
-
-struct ClassSums {
-  std::array<WalkSums, kRenderClasses> walks{};
-  std::array<std::uint64_t, kRenderClasses> rays{}, hits{};
-};
-
-}  // namespace
 
 std::size_t smallest_within(std::span<const Candidate> candidates, double tolerance) {
   double least = std::numeric_limits<double>::infinity();
@@ -79,36 +57,15 @@ void search_unimodal(std::size_t count, std::size_t start, const std::function<d
 }
 
 std::array<QueryLoad, kRenderClasses> count_segments(const UniformGrid& grid, std::span<const PilotSegment> segments,
-                                                     std::optional<double> grid_bytes) {
-  tbb::enumerable_thread_specific<ClassSums> per_thread;
-  kappa::parallel_for(tbb::blocked_range<std::size_t>(0, segments.size(), 1024), [&](const auto& range) {
-    ClassSums& sums = per_thread.local();
-    for (std::size_t i = range.begin(); i < range.end(); ++i) {
-      const PilotSegment& s = segments[i];
-      grid.count_closest_walk(s.ray, s.hit ? std::optional<float>(s.t_hit) : std::nullopt, sums.walks[s.ray_class]);
-      ++sums.rays[s.ray_class];
-      sums.hits[s.ray_class] += s.hit;
-    }
-  });
-  // Integer sums: the same totals whatever the thread count.
-  ClassSums all;
-  per_thread.combine_each([&](const ClassSums& t) {
-    for (std::size_t k = 0; k < kRenderClasses; ++k) {
-      all.walks[k].cells += t.walks[k].cells;
-      all.walks[k].occupied += t.walks[k].occupied;
-      all.walks[k].tests += t.walks[k].tests;
-      all.walks[k].skips += t.walks[k].skips;
-      all.rays[k] += t.rays[k];
-      all.hits[k] += t.hits[k];
-    }
-  });
+                                                     std::optional<double> grid_bytes, double frame_spp) {
   const double working_set = grid_bytes.value_or(double(grid.bytes())) + double(grid.info().N * sizeof(Triangle));
-  std::array<QueryLoad, kRenderClasses> loads{};
-  for (std::size_t k = 0; k < kRenderClasses; ++k)
-    loads[k] = QueryLoad{RenderClass(k),           double(all.rays[k]),        double(all.walks[k].cells),
-                         double(all.walks[k].occupied), double(all.walks[k].tests), double(all.walks[k].skips),
-                         double(all.hits[k]),      working_set};
-  return loads;
+  return replay_segments(
+      segments,
+      [&](const PilotSegment& s, auto& recorder) {
+        grid.count_closest_walk(s.ray, s.hit ? std::optional<float>(s.t_hit) : std::nullopt, recorder);
+        return s.hit;
+      },
+      working_set, frame_spp);
 }
 
 namespace {
@@ -181,7 +138,7 @@ Candidate evaluate_candidate(const UniformGrid& grid, std::span<const PilotSegme
     c.theta_tot = info.theta_tot;
   }
   c.bytes = std::uint64_t(std::min(grid_bytes + settings.stats_bytes_per_cell * double(info.resolution.cells()), 1.8e19));
-  const auto loads = count_segments(grid, segments, grid_bytes);
+  const auto loads = count_segments(grid, segments, grid_bytes, settings.frame_spp);
   // The model predicts thread-seconds (as calibrate times them); the frame's
   // threads share them, while the build's model gives its wall time.
   for (std::size_t k = 0; k < kRenderClasses; ++k)

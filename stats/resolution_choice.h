@@ -22,20 +22,11 @@
 #include "accel/grid.h"
 #include "accel/ray.h"
 #include "build_model.h"
+#include "pilot_replay.h"
 #include "render_counters.h"
 #include "time_model.h"
 
 namespace kappa {
-
-/// One query of the pilot: the ray, its class and the hit the frame's walk
-/// would stop at (for a shadow ray its closest occluder: the any-hit walk
-/// stops there or before, so its counts are an upper bound).
-struct PilotSegment {
-  Ray ray;
-  float t_hit = 0;
-  bool hit = false;
-  RenderClass ray_class = kCamera;
-};
 
 /// What a candidate resolution is predicted to cost.
 struct Candidate {
@@ -60,6 +51,7 @@ struct ChoiceSettings {
   /// Rays of each class in the frame per ray of that class in the pilot.
   std::array<double, kRenderClasses> rays_scale{};
   int threads = 1;                   ///< the frame's threads (the build is parallel)
+  double frame_spp = 1;              ///< the frame's samples per pixel, for its camera rays' cold steps
   std::uint64_t max_bytes = 0;       ///< --grid-max-bytes: the grid plus `stats_bytes_per_cell` per cell
   double stats_bytes_per_cell = 0;   ///< the per-cell statistics' bytes a cell when they are on, else 0
   double tolerance = 0.02;
@@ -67,9 +59,11 @@ struct ChoiceSettings {
 
 /// Counts `segments` on `grid` (its walks without triangle tests) into one
 /// load per class, hits from the pilot, working set = `grid_bytes` (default:
-/// the grid's own bytes) and the triangles'.
+/// the grid's own bytes) and the triangles', cold steps those of a frame of
+/// `frame_spp` samples per pixel (stats/pilot_replay.h).
 std::array<QueryLoad, kRenderClasses> count_segments(const UniformGrid& grid, std::span<const PilotSegment> segments,
-                                                     std::optional<double> grid_bytes = std::nullopt);
+                                                     std::optional<double> grid_bytes = std::nullopt,
+                                                     double frame_spp = 1);
 
 /// The cells the segments' walks visit on `grid`, as a bitset of N_c bits:
 /// its lists play no part (a walk stops at the pilot's hit), so an empty grid

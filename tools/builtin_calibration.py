@@ -24,9 +24,8 @@ def main():
     a = p.parse_args()
     with open(a.calibration) as f:
         cal = json.load(f)
-    # The coherent model is left out: a frame predicts with it only from a file that holds it (the built-in
-    # constants have none, stats/README.md).
-    kept = {k: v for k, v in cal.items() if not k.endswith(("measurements", "builds")) and k != "coherent"}
+    # Every model's constants, the coherent one's too: the choices predict with it (stats/README.md).
+    kept = {k: v for k, v in cal.items() if not k.endswith(("measurements", "builds"))}
     text = json.dumps(kept, separators=(",", ":"))
     pieces = "\n".join(f'    R"({text[i:i + 100]})"' for i in range(0, len(text), 100))
     with open(SOURCE) as f:

@@ -132,14 +132,16 @@ FrameAccelerator build_frame_accelerator(const Scene& scene, const RenderSetting
   std::optional<GridChoice> model_choice;
   const double grid_s = predict_grid(scene, settings, request, calibration, pilot, choice_settings, model_choice, skipped);
   predicted["grid"] = std::isfinite(grid_s) ? nlohmann::ordered_json(grid_s) : nlohmann::ordered_json(nullptr);
-  const double grid2_s = grid2 ? predict_grid2(*grid2, pilot.pilot.segments, choice_settings, calibration.grid2).total_s()
+  const Grid2Model grid2_model = grid2_choice_model(calibration);
+  const double grid2_s = grid2 ? predict_grid2(*grid2, pilot.pilot.segments, choice_settings, grid2_model).total_s()
                                : std::numeric_limits<double>::infinity();
   predicted["grid2"] = grid2 ? nlohmann::ordered_json(grid2_s) : nlohmann::ordered_json(nullptr);
   // grid2 replaces the grid, the paper's accelerator, only when predicted
   // faster by more than its model's own rms relative error over the
   // calibration: within it the two are a tie the model cannot call (Sponza:
   // grid2 predicted 4 % faster, measured 10 % slower).
-  const double margin = calibration.grid2.traversal.rms_relative_error;
+  const double margin = grid2_model.traversal.rms_relative_error;
+  choice["models"] = {{"grid", choice_settings.traversal->name}, {"grid2", grid2_model.traversal.name}};
   std::string chosen = "grid";
   if (naive_s < std::min(grid_s, grid2_s)) {
     chosen = "naive";

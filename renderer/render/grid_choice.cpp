@@ -23,6 +23,7 @@ FramePilot run_frame_pilot(const Scene& scene, const RenderSettings& settings, d
   begin_phase(progress, "pilot: " + std::to_string(pixels) + " pixels of the frame, to predict its cost", 0);
   out.pilot = run_pilot(scene, scene.width, scene.height, pixels, *through, settings);
   out.frame_paths = frame_paths;
+  out.frame_pixels = double(scene.width) * double(scene.height);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
@@ -30,11 +31,12 @@ FramePilot run_frame_pilot(const Scene& scene, const RenderSettings& settings, d
 ChoiceSettings frame_choice_settings(const FramePilot& pilot, const RenderSettings& settings, const AccelOptions& build,
                                      const Calibration& calibration) {
   ChoiceSettings s;
-  s.traversal = &calibration.extended;
+  s.traversal = &grid_choice_model(calibration);
   s.build = &calibration.build;
   const double pilot_paths = double(pilot.pilot.width) * double(pilot.pilot.height);
   s.rays_scale.fill(pilot.frame_paths / pilot_paths);
   s.threads = active_threads();
+  s.frame_spp = pilot.frame_pixels > 0 ? pilot.frame_paths / pilot.frame_pixels : 1.0;
   s.max_bytes = build.max_bytes();
   // With statistics on, one shared set of per-cell arrays per class (the
   // least a frame keeps per cell; sampled paths count into it).
@@ -78,6 +80,7 @@ void build_grid_choice(GridChoice& out, const Scene& scene, const RenderSettings
   for (std::uint64_t r : pilot.pilot.rays) pilot_rays += r;
   out.report = {{"requested", "model"},
                 {"calibration", calibration.source},
+                {"model", choice_settings.traversal->name},
                 {"chosen", chosen.res.to_string()},
                 {"predicted_s", chosen.total_s()},
                 {"predicted_traversal_s", chosen.traversal_s},

@@ -26,6 +26,7 @@ struct FramePilot {
   std::unique_ptr<UniformGrid> grid;  ///< the grid `auto` builds at the default budget, when the pilot built it
   Pilot pilot;
   double frame_paths = 0;  ///< the frame's paths (pixels x spp, or the budget's cap)
+  double frame_pixels = 0;  ///< the frame's pixels
   double seconds = 0;      ///< the pilot grid's build (when it built one) and the pilot
 };
 

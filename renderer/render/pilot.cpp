@@ -9,6 +9,7 @@
 
 #include "renderer/render/queries.h"
 #include "renderer/render/tile_loop.h"
+#include "renderer/render/tile_schedule.h"
 
 namespace kappa {
 namespace {
@@ -20,6 +21,7 @@ struct RecordingQueries {
   const Accelerator& accel;
   std::vector<PilotSegment>& out;
   std::vector<std::uint32_t>& pixel_rays;  ///< a pixel's element written by the one thread rendering it
+  const std::vector<std::uint32_t>& frame_tile;  ///< per pilot pixel, the frame's tile it stands for
   std::uint64_t rays = 0;
   std::size_t pixel = 0;
 
@@ -50,7 +52,7 @@ struct RecordingQueries {
     ++rays;
     ++pixel_rays[pixel];
     const std::optional<Hit> hit = filtered_closest(accel, r, filter);
-    out.push_back({r, hit ? hit->t : r.tmax, hit.has_value(), k});
+    out.push_back({r, hit ? hit->t : r.tmax, hit.has_value(), k, frame_tile[pixel], std::uint32_t(pixel)});
     return hit;
   }
 };
@@ -74,13 +76,31 @@ Pilot run_pilot(const Scene& scene, int width, int height, int pixels, const Acc
   one.passes = nullptr;
   one.test_nonfinite = nullptr;
   Film film(pilot.width, pilot.height, AovSelection{});
+  // Each pilot pixel stands for the frame's pixels around its centre; the
+  // frame's tile holding that centre is the one whose walks it replays.
+  const int frame_tiles_x = (width + kTileSize - 1) / kTileSize;
+  std::vector<std::uint32_t> frame_tile(std::size_t(pilot.width) * std::size_t(pilot.height));
+  for (int y = 0; y < pilot.height; ++y)
+    for (int x = 0; x < pilot.width; ++x) {
+      const int fx = std::min(width - 1, int((x + 0.5) * width / pilot.width));
+      const int fy = std::min(height - 1, int((y + 0.5) * height / pilot.height));
+      frame_tile[std::size_t(y) * std::size_t(pilot.width) + std::size_t(x)] =
+          std::uint32_t((fy / kTileSize) * frame_tiles_x + fx / kTileSize);
+    }
   tbb::enumerable_thread_specific<std::vector<PilotSegment>> per_thread;
   pilot.pixel_rays.assign(std::size_t(pilot.width) * std::size_t(pilot.height), 0);
-  render_tiles(scene, one, film, {}, [&] { return RecordingQueries{accel, per_thread.local(), pilot.pixel_rays}; });
+  render_tiles(scene, one, film, {},
+               [&] { return RecordingQueries{accel, per_thread.local(), pilot.pixel_rays, frame_tile}; });
   std::size_t total = 0;
   for (const auto& v : per_thread) total += v.size();
   pilot.segments.reserve(total);
   for (const auto& v : per_thread) pilot.segments.insert(pilot.segments.end(), v.begin(), v.end());
+  // By frame tile, then pixel (row by row, as a tile walks them): one
+  // thread rendered each pixel's segments in order, so the stable sort's
+  // order is the same for any thread count.
+  std::stable_sort(pilot.segments.begin(), pilot.segments.end(), [](const PilotSegment& a, const PilotSegment& b) {
+    return a.tile != b.tile ? a.tile < b.tile : a.pixel < b.pixel;
+  });
   for (const PilotSegment& s : pilot.segments) ++pilot.rays[s.ray_class];
   pilot.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return pilot;

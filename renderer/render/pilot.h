@@ -17,7 +17,7 @@
 namespace kappa {
 
 struct Pilot {
-  std::vector<PilotSegment> segments;  ///< every query of the pilot's paths (in no fixed order)
+  std::vector<PilotSegment> segments;  ///< every query of the pilot's paths, by frame tile, then pixel, then in the path's order
   std::array<std::uint64_t, kRenderClasses> rays{};  ///< of them, per class
   int width = 0, height = 0;           ///< the pilot's film: the frame's aspect, about the pixels asked for
   double seconds = 0;                  ///< the pilot render's wall time
