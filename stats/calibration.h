@@ -41,16 +41,12 @@ struct Calibration {
   std::optional<TimeModel> coherent, grid2_coherent;
 };
 
-/// The traversal model the choices (--grid-res model, --accel auto) predict
-/// the grid with: the coherent one where it was fitted (it predicts the
-/// ratios a choice compares better: issue 50's note), else the extended one.
+/// The traversal model --grid-res model chooses a resolution with: the
+/// coherent one where it was fitted (it predicts the ratios of two grid
+/// resolutions' costs better, and chose resolutions nearer the fastest:
+/// issue 50's note), else the extended one. --accel auto weighs the grid
+/// against grid2 by the extended model.
 inline const TimeModel& grid_choice_model(const Calibration& c) { return c.coherent ? *c.coherent : c.extended; }
-/// grid2's, the same way: its coherent traversal model where fitted.
-inline Grid2Model grid2_choice_model(const Calibration& c) {
-  Grid2Model m = c.grid2;
-  if (c.grid2_coherent) m.traversal = *c.grid2_coherent;
-  return m;
-}
 
 /// The coherent model fitted to `measurements`, or nullopt when none of
 /// them counted coherence (a cold step) or they do not determine it.

@@ -17,7 +17,11 @@
 # 3. the scaling study (the paper's Table 2): generated scenes of 10^2 ... 10^6 triangles (tessellated
 #    spheres, constant-area and fixed-edge soups, a small sphere in a large box), each rendered at
 #    --grid-res auto and model: timed with --stats off on one thread, counted with --stats on at the same
-#    resolution.
+#    resolution;
+# 4. per scene, grid2 with statistics on (its levels), and the uniform grid against the hierarchical
+#    accelerators: grid, grid2 and Embree timed with --stats off, taking turns over 3 rounds;
+# 5. (full run) the cost model judged on choosing: tools/cost_model_check.sh --ratios on the shared
+#    scenes, with build/kappa_calibration.json (made by `kappa calibrate` if missing).
 # The full study uses ../shared/scenes (a scene that is missing is skipped, and the page says so); --quick
 # uses only assets/ and the scaling study up to 10^4 triangles. The kappa binary is $KAPPA_BIN, else
 # build/kappa. Raw outputs stay in a temporary folder, removed at the end unless STUDY_KEEP_WORK=1; the
@@ -80,7 +84,7 @@ if [ "${STUDY_KEEP_WORK:-0}" = 1 ]; then
 else
   trap 'rm -rf "$work"' EXIT
 fi
-mkdir -p "$work/sweep" "$work/kappa" "$work/model" "$work/scaling" "$work/scenes" "$work/img"
+mkdir -p "$work/sweep" "$work/kappa" "$work/model" "$work/grid2" "$work/accel" "$work/scaling" "$work/scenes" "$work/img"
 start=$(date +%s)
 uptime_before="$(uptime)"
 
@@ -145,8 +149,17 @@ else
     "lucy|$shared/lucy/scene.json"
     "dragon-res2|$shared/dragon/scene_res2.json"
     "dragon|$shared/dragon/scene.json"
+    "sponza-textured|$work/scenes/sponza-textured/scene.json"
   )
+  # The textured Sponza (its colour maps, cut-out banners and sky image), generated from the shared one.
+  if [ -f "$shared/sponza/sponza.obj" ]; then
+    [ -f "$repo/assets/sky/sky.hdr" ] || "$python" "$repo/assets/sky/gen.py" >/dev/null
+    "$python" "$repo/tools/scenes/textured_sponza.py" --sponza "$shared/sponza" \
+      --out "$work/scenes/sponza-textured" >/dev/null
+  fi
 fi
+rounds=3  # of the accelerators' timed renders
+[ "$mode" = full ] || rounds=2
 
 log "study ($mode) into $out; kappa: $kappa; raw outputs in $work"
 for entry in "${scene_list[@]}"; do
@@ -179,6 +192,21 @@ for entry in "${scene_list[@]}"; do
   log "model's choice: $name"
   step model "$name" "$kappa" render "$path" --accel grid --occluder-cache off --grid-res model --stats off "${model_args[@]}" \
     --report "$work/model/$name.json" --out "$work/img/$name-model.exr" -q
+  # grid2, counted: its levels' cells, tests and kappa for the same frame.
+  log "grid2 per level: $name"
+  step grid2 "$name" "$kappa" render "$path" --accel grid2 --occluder-cache off --stats on "${kappa_args[@]}" \
+    --report "$work/grid2/$name.json" --out "$work/img/$name-grid2.exr" -q
+  # The uniform grid against the hierarchical ones, timed: statistics off, the frame's defaults (the
+  # occluder cache on), the three taking turns, the first of each round rotating.
+  log "grid, grid2 and Embree timed: $name"
+  accels=(grid grid2 embree)
+  for ((round = 1; round <= rounds; round++)); do
+    for ((k = 0; k < 3; k++)); do
+      accel="${accels[$(((round + k) % 3))]}"
+      step accel "$name-$accel" "$kappa" render "$path" --accel "$accel" --stats off "${kappa_args[@]}" \
+        --report "$work/accel/$name.$accel.$round.json" --out "$work/img/x.exr" -q
+    done
+  done
 done
 
 # res_of REPORT: the resolution a report's grid was built at, as NxNxN.
@@ -231,6 +259,13 @@ for family in "${families[@]}"; do
     done
   done
 done
+
+# The cost model on choosing (full run, the shared scenes): the reports stay in $work/ratios.
+if [ "$mode" = full ] && [ -z "${STUDY_SCENES:-}" ] && compgen -G "$shared/*/scene.json" >/dev/null; then
+  log "the cost model's ratios (tools/cost_model_check.sh --ratios)"
+  step ratios "cost_model_check" env KAPPA="$kappa" KEEP="$work/ratios" "$repo/tools/cost_model_check.sh" --ratios \
+    -n 3 -s 4 -f 256x256 -c "$(dirname "$kappa")/kappa_calibration.json" > "$work/ratios.md"
+fi
 
 end=$(date +%s)
 state_after="$(tree_state)"

@@ -19,18 +19,14 @@ import statistics
 import sys
 
 import numpy as np
-import matplotlib
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from study_accels import accels_section, levels_section
+from study_ratios import ratios_section
+from study_page import (CLASS_COLOURS, DPI, NONE, RENDER_CLASSES, Page, finite, new_figure, num, opt, opt_ratio, pct,
+                        ratio, read_json, read_tsv)
 
-# Every figure is saved at FIGSIZE * DPI pixels exactly (no tight bounding box), so a test can check it.
-DPI = 80
-FIGSIZE = {"sweep": (13.0, 3.5), "kappa": (11.0, 4.5), "scaling": (14.0, 6.5)}
-RENDER_CLASSES = ["camera", "shadow", "bounce1", "bounce2", "bounce3+"]
 # Sweep classes a render casts (lines are the paper's uniform lines, not a render's rays).
 RENDER_MIX = ["camera", "bounce", "shadow"]
-NONE = "—"  # a value the report has as null (no rays of a class, no prediction); only in "num?" columns
 
 FAMILIES = {
     "sphere": "tessellated unit sphere (cube sphere, `tools/make_sphere.py`)",
@@ -76,45 +72,6 @@ EXPONENT_TEXT = {"case1": "e_D = 1/2, e_SA = 0, e_V = 0, e_L = 0: Table 2's case
 
 # ---------------------------------------------------------------------------------------------- formatting
 
-def finite(x):
-    return x is not None and isinstance(x, (int, float)) and math.isfinite(x)
-
-
-def num(x, sig=3):
-    """A finite number with sig significant digits, without exponent between 1e-3 and 1e7."""
-    if not finite(x):
-        raise ValueError("not a finite number: %r" % (x,))
-    if x == 0:
-        return "0"
-    if float(x).is_integer() and abs(x) < 1e7:
-        return "%d" % x  # counts (N, N_c, rays) as they are
-    mag = math.floor(math.log10(abs(x)))
-    if -3 <= mag < 7:
-        decimals = max(0, sig - 1 - mag)
-        return "%.*f" % (decimals, round(x, decimals))
-    return "%.*e" % (sig - 1, x)
-
-
-def opt(x, sig=3):
-    """num(x), or NONE when the report holds no value."""
-    return num(x, sig) if finite(x) else NONE
-
-
-def ratio(x):
-    """A ratio of costs, always two decimals so that a column reads evenly."""
-    if not finite(x):
-        raise ValueError("not a finite ratio: %r" % (x,))
-    return "%.2f" % x
-
-
-def opt_ratio(x):
-    return ratio(x) if finite(x) else NONE
-
-
-def pct(x):
-    return num(100.0 * x, 2)
-
-
 def exponent(x):
     """The paper's exponents as fractions where they are thirds."""
     for text, value in (("0", 0), ("1/3", THIRD), ("2/3", 2 * THIRD), ("1", 1), ("5/3", 5 * THIRD)):
@@ -123,63 +80,7 @@ def exponent(x):
     return num(x)
 
 
-class Page:
-    """Markdown lines, plus what the manifest records of each table and figure."""
-
-    def __init__(self, out_dir):
-        self.lines = []
-        self.tables = []
-        self.pngs = {}
-        self.out_dir = out_dir
-        self.staged = []  # (temporary path, final path)
-
-    def add(self, text=""):
-        self.lines.append(text)
-
-    def para(self, text):
-        self.lines += [text, ""]
-
-    def table(self, header, kinds, rows):
-        """kinds per column: text, res (NxNxN), num (finite number), num? (finite number or NONE)."""
-        assert len(header) == len(kinds)
-        for row in rows:
-            assert len(row) == len(kinds), (header, row)
-        self.lines.append("| " + " | ".join(header) + " |")
-        self.lines.append("|" + "|".join("---" if k in ("text", "res") else "---:" for k in kinds) + "|")
-        for row in rows:
-            self.lines.append("| " + " | ".join(row) + " |")
-        self.lines.append("")
-        self.tables.append({"header": header, "kinds": kinds, "rows": len(rows)})
-
-    def figure(self, fig, name, kind, alt):
-        rel = "results/%s.png" % name
-        final = os.path.join(self.out_dir, rel)
-        tmp = final + ".tmp%d" % os.getpid()
-        fig.savefig(tmp, dpi=DPI, format="png")
-        plt.close(fig)
-        w, h = FIGSIZE[kind]
-        self.pngs[rel] = {"width": int(round(w * DPI)), "height": int(round(h * DPI))}
-        self.staged.append((tmp, final))
-        self.lines += ["![%s](%s)" % (alt, rel), ""]
-
-
-def new_figure(kind, rows=1, cols=1):
-    return plt.subplots(rows, cols, figsize=FIGSIZE[kind], squeeze=False)
-
-
 # ---------------------------------------------------------------------------------------------- reading
-
-def read_json(path):
-    with open(path) as f:
-        return json.load(f)
-
-
-def read_tsv(path):
-    if not os.path.exists(path):
-        return []
-    with open(path) as f:
-        return [line.rstrip("\n").split("\t") for line in f if line.strip()]
-
 
 def slope(ns, ys):
     """Least-squares slope of log y on log N over the points where both are positive and finite."""
@@ -241,6 +142,7 @@ def header(page, meta, scenes, steps):
 def sweep_section(page, data_dir, scenes, record):
     page.add("## 1. Cost per ray against the grid's resolution (`kappa sweep`)")
     page.add()
+    finding_at = len(page.lines)  # the section's finding, once its scenes are read
     page.para("`kappa sweep` builds the grid at resolutions geometric in N_c and, at each, times `kappa "
               "bench`'s ray sets with statistics off (the median of the timed passes) and counts the same "
               "rays' cells and tests, beside two predictions from those counts: the paper's eq 10 (T0 + "
@@ -288,20 +190,27 @@ def sweep_section(page, data_dir, scenes, record):
             m = [p["seconds_per_ray"] * 1e9 for p in pts]
             lo = [mi - p.get("seconds_per_ray_min", p["seconds_per_ray"]) * 1e9 for mi, p in zip(m, pts)]
             hi = [p.get("seconds_per_ray_max", p["seconds_per_ray"]) * 1e9 - mi for mi, p in zip(m, pts)]
-            ax.errorbar(x, m, yerr=[lo, hi], fmt="o-", color="black", capsize=2, label="measured")
-            for key, style, label in (("eq10_s_per_ray", "s--", "eq 10"), ("extended_s_per_ray", "^--", "extended")):
+            colour = CLASS_COLOURS.get(c, "black")
+            ax.errorbar(x, m, yerr=[lo, hi], fmt="o-", color=colour, capsize=2, label="measured")
+            for key, style, label in (("eq10_s_per_ray", "s:", "eq 10"), ("extended_s_per_ray", "^--", "extended")):
                 if all(finite(p[key]) for p in pts):
-                    ax.plot(x, [p[key] * 1e9 for p in pts], style, label=label)
+                    ax.plot(x, [p[key] * 1e9 for p in pts], style, color=colour, alpha=0.6, label=label)
             b = per_class[c]["best"]
             ax.plot([b["N_c"]], [b["seconds_per_ray"] * 1e9], "*", color="tab:red", markersize=13, label="fastest")
             ax.set_xscale("log")
             ax.set_yscale("log")
-            ax.set_xlabel("N_c")
-            ax.set_title(c, fontsize=10)
+            ax.set_xlabel("N_c (cells)")
+            ax.set_title("%s: fastest at λ = %s" % (c, num(per_class[c]["best"]["N_c"] / n_tri)), fontsize=10)
             ax.grid(True, which="both", alpha=0.3)
-        axes[0][0].set_ylabel("ns per ray")
+        axes[0][0].set_ylabel("time per ray (ns)")
         axes[0][0].legend(fontsize=7)
-        fig.suptitle("%s: %d triangles, %d rays per class" % (sc["name"], n_tri, d["n"]), fontsize=10)
+        ext = [per_class[c]["extended"]["err"] for c in classes if finite(per_class[c]["extended"]["err"])]
+        fig.suptitle("%s (%d triangles, %d rays per class): the cost per ray varies up to %s× over "
+                     "λ = %s–%s%s" % (sc["name"], n_tri, d["n"], flat_factor(per_class, classes),
+                                     num(min(p["N_c"] for p in d["points"]) / n_tri),
+                                     num(max(p["N_c"] for p in d["points"]) / n_tri),
+                                     "; the extended model's median error %s–%s %%" % (pct(min(ext)), pct(max(ext)))
+                                     if ext else ""), fontsize=10)
         fig.tight_layout()
         page.figure(fig, "sweep-" + sc["name"], "sweep", "sweep of " + sc["name"])
         lam = [p["N_c"] / n_tri for p in d["points"]]
@@ -343,7 +252,47 @@ def sweep_section(page, data_dir, scenes, record):
                                             "extended_median_abs_error": per_class[c]["extended"]["err"]}
                                         for c in classes}
         summary.append((sc, d, per_class))
+    if summary:
+        page.lines[finding_at:finding_at] = [sweep_finding(summary), ""]
     return summary
+
+
+def flat_factor(per_class, classes):
+    """The largest ratio, over the classes, of the slowest to the fastest swept resolution's cost."""
+    f = max(max(p["seconds_per_ray"] for p in per_class[c]["points"]) /
+            min(p["seconds_per_ray"] for p in per_class[c]["points"]) for c in classes)
+    return num(f, 2)
+
+
+def sweep_finding(summary):
+    """The section's two sentences: where the fastest density lies, and how well each model predicts it."""
+    lams, losses = [], []
+    for sc, d, per_class in summary:
+        for c, info in per_class.items():
+            if c in RENDER_MIX:
+                lams.append((info["best"]["N_c"] / d["N"], sc["name"], c))
+                if finite(info["extended"]["loss"]):
+                    losses.append((info["extended"]["loss"], sc["name"], c))
+    lo, hi = min(lams), max(lams)
+    # Within a factor of 2 of each fastest density (the swept points there), the most any costs more.
+    near = []
+    for sc, d, per_class in summary:
+        for c, info in per_class.items():
+            if c not in RENDER_MIX:
+                continue
+            b = info["best"]
+            for p in info["points"]:
+                if p is not b and abs(math.log2(p["N_c"] / b["N_c"])) <= 1.01:
+                    near.append(p["seconds_per_ray"] / b["seconds_per_ray"])
+    text = ("**The fastest density for a render's rays lies between λ = %s (%s, %s) and λ = %s (%s, %s) cells "
+            "per triangle" % (num(lo[0]), lo[1], lo[2], num(hi[0]), hi[1], hi[2]))
+    text += ("; a swept density within a factor of 2 of a class's fastest costs at most %s %% more.**" %
+             pct(max(near) - 1) if near else ".**")
+    if losses:
+        worst = max(losses)
+        text += (" Taking the extended model's predicted optimum instead of the measured one costs at most %s %% "
+                 "(%s, %s rays)." % (pct(worst[0] - 1), worst[1], worst[2]))
+    return text
 
 
 def pick_section(page, data_dir, summary):
@@ -470,7 +419,8 @@ def kappa_section(page, data_dir, scenes, record):
         record["kappa"][sc["name"]] = {"res": g["res"], "N_c": g["N_c"], "kappa": ks}
     if not rows:
         page.para("No scene was rendered.")
-        return
+        return facts
+    page.para(kappa_finding(facts))
     page.para("`kappa render SCENE --grid-res auto --stats on` (settings in the header): κ (eq 8) of each ray "
               "class over the whole frame, exact from the per-class totals, κ = N_c·Σ p_i Θ_i / (p_tot·Θ_tot). "
               "κ = 1 means a class's rays meet occupied cells as often as uniform lines would; κ > 1, that "
@@ -485,35 +435,31 @@ def kappa_section(page, data_dir, scenes, record):
     for j, c in enumerate(RENDER_CLASSES):
         xs = [i + (j - (len(RENDER_CLASSES) - 1) / 2) * width for i in range(len(plot))]
         ys = [ks[c] if finite(ks[c]) else float("nan") for _, ks in plot]
-        ax.bar(xs, ys, width=width, label=c)
+        ax.bar(xs, ys, width=width, color=CLASS_COLOURS[c], label=c)
     ax.axhline(1.0, color="black", linewidth=1, linestyle="--", label="κ = 1")
     ax.set_yscale("log")
     low = min([ks[c] for _, ks in plot for c in RENDER_CLASSES if finite(ks[c]) and ks[c] > 0] + [1.0])
     ax.set_ylim(bottom=low / 2)
     ax.set_xticks(range(len(plot)))
     ax.set_xticklabels([name for name, _ in plot], fontsize=8, rotation=15)
-    ax.set_ylabel("κ (eq 8)")
+    ax.set_ylabel("κ (eq 8, dimensionless)")
+    ax.set_title(kappa_headline(facts), fontsize=10)
     ax.legend(fontsize=8, ncol=3)
     ax.grid(True, axis="y", which="both", alpha=0.3)
     fig.tight_layout()
     page.figure(fig, "kappa", "kappa", "kappa per ray class and scene")
-    # Where kappa > 1, per class and scene, from the table's numbers.
-    parts = []
+    # Where kappa > 1, per class, from the table's numbers.
+    krows = []
     for c in RENDER_CLASSES:
-        above = [f["scene"] for f in facts if finite(f["k"][c]) and f["k"][c] > 1]
-        parts.append("%s on %s" % (c, ", ".join(above) if above else "no scene"))
-    text = "κ > 1 for " + "; ".join(parts) + "."
-    none_above = [f["scene"] for f in facts if all(not finite(f["k"][c]) or f["k"][c] <= 1 for c in RENDER_CLASSES)]
-    if none_above:
-        text += " Every class has κ ≤ 1 on %s: there the rays favour the emptier cells." % ", ".join(none_above)
-    big = max(facts, key=lambda f: f["k"][f["top"]])
-    text += (" The largest is %s's %s rays, κ = %s." % (big["scene"], big["top"], num(big["k"][big["top"]])))
-    counts = {}
-    for f in facts:
-        counts[f["top"]] = counts.get(f["top"], 0) + 1
-    text += " The class with the largest κ is " + ", ".join(
-        "%s on %d scene(s)" % (c, n) for c, n in sorted(counts.items(), key=lambda kv: -kv[1])) + "."
-    page.para(text)
+        ks = [(f["k"][c], f["scene"]) for f in facts if finite(f["k"][c])]
+        if not ks:
+            continue
+        above = [name for k, name in ks if k > 1]
+        top = max(ks)
+        krows.append([c, str(len(above)), str(len(ks)), num(statistics.median(k for k, _ in ks)), num(top[0]), top[1]])
+    page.para("Per class over the scenes: on how many κ > 1, the median κ, and the largest.")
+    page.table(["class", "scenes with κ > 1", "scenes", "median κ", "largest κ", "on"],
+               ["text", "num", "num", "num", "num", "text"], krows)
     page.para("Why: by the corrected eq 25, κ = 1 + (σ_p/p_avg)(σ_Θ/Θ_avg)·r, so κ is large only where the "
               "occupancy is uneven (σ_Θ/Θ_avg), the class's rays are uneven over the cells (σ_p/p_avg) and the "
               "two are correlated (r). Below, per scene, the class with the largest κ and those factors "
@@ -533,6 +479,77 @@ def kappa_section(page, data_dir, scenes, record):
                          "of the cells empty" % (f["scene"], num(k), f["top"], num(f["rel_t"]), pct(f["empty"])))
     if sents:
         page.para("From the numbers: " + "; ".join(sents) + ".")
+    lobe_section(page, data_dir, scenes, record)
+    return facts
+
+
+def kappa_values(facts):
+    return [(f["k"][c], f["scene"], c) for f in facts for c in RENDER_CLASSES if finite(f["k"][c])]
+
+
+def kappa_headline(facts):
+    ks = kappa_values(facts)
+    top = max(ks)
+    small = sum(1 for k, _, _ in ks if k <= 2)
+    return ("κ ≤ 2 for %d of %d scene-class pairs; the largest, %s on %s's %s rays" %
+            (small, len(ks), num(top[0]), top[1], top[2]))
+
+
+def kappa_finding(facts):
+    """The section's two sentences: is κ O(1) in practice, and where it is not, why (eq 25)."""
+    ks = kappa_values(facts)
+    small = [k for k in ks if k[0] <= 2]
+    big = sorted((k for k in ks if k[0] > 2), reverse=True)
+    verdict = ("Yes" if len(small) >= 0.75 * len(ks) else "On some scenes" if len(small) >= 0.25 * len(ks) else "No")
+    text = ("**Is κ O(1) in practice? %s: for %d of %d scene-class pairs it is a small constant, κ ≤ 2 (median "
+            "over all pairs %s)" % (verdict, len(small), len(ks), num(statistics.median(k for k, _, _ in ks))))
+    if big:
+        scenes_big = list(dict.fromkeys(name for _, name, _ in big))
+        text += ("; it is not on %s, where it reaches %s (%s rays).** There the grid's occupancy is uneven and the "
+                 "rays visit the crowded cells more than uniform lines would: by the corrected eq 25, κ − 1 is the "
+                 "product of the two spreads and their correlation (below)." %
+                 (", ".join(scenes_big), num(big[0][0]), big[0][2]))
+    else:
+        text += ".** Rays here do not favour the crowded cells enough for eq 25's product of spreads to matter."
+    return text
+
+
+def lobe_section(page, data_dir, scenes, record):
+    """κ of the bounce rays by the BSDF lobe that sampled them, on the scenes whose materials have several."""
+    rows, facts = [], []
+    for sc in scenes:
+        path = os.path.join(data_dir, "kappa", sc["name"] + ".json")
+        if sc["status"] != "ok" or not os.path.exists(path):
+            continue
+        lobes = read_json(path)["rays"].get("bounce_by_lobe") or {}
+        present = {name: v for name, v in lobes.items() if v and v.get("count")}
+        if len(present) < 2:
+            continue  # one lobe: its rays are the bounce classes themselves
+        for name, v in present.items():
+            rows.append([sc["name"], name, num(v["count"]), opt(v.get("cells_per_ray")), opt(v.get("tests_per_ray")),
+                         opt(v.get("kappa"))])
+            if finite(v.get("kappa")):
+                facts.append((v["kappa"], sc["name"], name))
+    page.add("### κ per BSDF lobe")
+    page.add()
+    if not rows:
+        page.para("No scene here has bounce rays of more than one lobe (every surface Lambertian).")
+        return
+    by_lobe = {}
+    for k, _, lobe in facts:
+        by_lobe.setdefault(lobe, []).append(k)
+    spread = max(by_lobe, key=lambda l: statistics.median(by_lobe[l]))
+    low = min(by_lobe, key=lambda l: statistics.median(by_lobe[l]))
+    page.para("**Bounce rays collude differently by the lobe that sampled them: %s rays have the largest median κ "
+              "(%s), %s the smallest (%s), over the %d scenes with several lobes.** κ per lobe is eq 8 over that "
+              "lobe's rays alone, so the lobes' κ differ only where their rays meet the crowded cells differently."
+              % (spread, num(statistics.median(by_lobe[spread])), low, num(statistics.median(by_lobe[low])),
+                 len({s_ for _, s_, _ in facts})))
+    page.para("Every bounce ray (bounce1 to bounce3+) counted by the lobe its direction was sampled from "
+              "(`rays.bounce_by_lobe`, the κ renders above), on the scenes with more than one lobe.")
+    page.table(["scene", "lobe", "rays", "cells per ray", "tests per ray", "κ"],
+               ["text", "text", "num", "num?", "num?", "num?"], rows)
+    record["kappa_by_lobe"] = [{"scene": s_, "lobe": l, "kappa": k} for k, s_, l in facts]
 
 
 def scaling_points(data_dir, family):
@@ -567,6 +584,7 @@ def scaling_points(data_dir, family):
 def scaling_section(page, data_dir, meta, record):
     page.add("## 3. The scaling study (the paper's Table 2)")
     page.add()
+    finding_at = len(page.lines)
     families = [f for f in meta["settings"]["families"] if os.path.isdir(os.path.join(data_dir, "scaling", f))]
     page.para("Generated scenes (`tools/make_scaling_scene.py`) of N = %s triangles (the real N of each is "
               "in the tables), each rendered at %s with a white sky (so that paths bounce), `%s` at every N: timed "
@@ -644,14 +662,59 @@ def scaling_section(page, data_dir, meta, record):
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(label, fontsize=9)
+        ax.set_ylabel(label, fontsize=7)
         ax.set_xlabel("N", fontsize=8)
         ax.tick_params(labelsize=7)
         ax.grid(True, which="both", alpha=0.3)
     if axes[0][0].get_legend_handles_labels()[0]:
         axes[0][0].legend(fontsize=6)
+    fig.suptitle(scaling_headline(record["scaling"]), fontsize=10)
     fig.tight_layout()
     page.figure(fig, "scaling", "scaling", "scaling study")
     page.para("The plot: each quantity against N, log–log, per family (colour), `auto` solid and `model` dashed.")
+    finding = scaling_finding(record["scaling"])
+    if finding:
+        page.lines[finding_at:finding_at] = [finding, ""]
+    return record["scaling"]
+
+
+def scaling_headline(scaling):
+    """The scaling figure's title: how cells per ray grow at auto, and where κ grows with N."""
+    p = [(v["slopes"]["auto"]["p_tot"], f) for f, v in scaling.items() if finite(v["slopes"]["auto"].get("p_tot"))]
+    k = [(v["slopes"]["auto"]["kappa"], f) for f, v in scaling.items() if finite(v["slopes"]["auto"].get("kappa"))]
+    if not p:
+        return "Against N (triangles): per family, auto solid and model dashed"
+    text = "Against N (triangles), at auto: cells per ray grow as N^%s to N^%s (the paper: N^1/3)" % (
+        num(min(p)[0], 2), num(max(p)[0], 2))
+    grows = [f for s_, f in k if s_ > 0.1]
+    text += "; κ grows with N on %s" % ", ".join(grows) if grows else "; κ stays flat on every family"
+    return text + " (model dashed)"
+
+
+def scaling_finding(scaling):
+    """The section's two sentences: the measured exponents of p_tot and Θ_tot against the paper's."""
+    parts, kappas = [], []
+    for fam, v in scaling.items():
+        s = v["slopes"]["auto"]
+        if not all(finite(s.get(k)) for k in ("p_tot", "theta_tot", "kappa")):
+            continue
+        case = PAPER[PAPER_CASE.get(fam, "case1")]["lambda"]
+        parts.append("%s N^%s and N^%s (paper N^%s and N^%s)" % (fam, num(s["p_tot"], 2), num(s["theta_tot"], 2),
+                                                                  exponent(case["p_tot"]), exponent(case["theta_tot"])))
+        kappas.append((s["kappa"], fam))
+    if not parts:
+        return None
+    text = ("**How p_tot and Θ_tot scale (Table 2): at `--grid-res auto`, cells per ray and Θ_tot grow as " +
+            "; ".join(parts) + ".**")
+    flat = [fam for k, fam in kappas if abs(k) <= 0.1]
+    moving = [(k, fam) for k, fam in kappas if abs(k) > 0.1]
+    if moving:
+        text += (" κ stays O(1) as N grows on %s, but not on %s." %
+                 (", ".join(flat) if flat else "no family",
+                  ", ".join("%s (κ as N^%s)" % (f, num(k, 2)) for k, f in moving)))
+    else:
+        text += " κ stays O(1) as N grows on every family (|slope| ≤ 0.1)."
+    return text
 
 
 def auto_lambda_text(data_dir, families):
@@ -720,6 +783,66 @@ def scaling_text(fam, case, slopes, pts):
     return " ".join(out) if out else "Too few sizes were measured for slopes."
 
 
+def findings(kfacts, scaling, afacts, rsum):
+    """The page's opening paragraph: the study's three main findings, each from its section's numbers."""
+    out = []
+    if kfacts:
+        ks = kappa_values(kfacts)
+        top = max(ks)
+        small = sum(1 for k, _, _ in ks if k <= 2)
+        f = next(f for f in kfacts if f["scene"] == top[1])
+        verdict = ("κ is O(1) in practice" if small >= 0.75 * len(ks) else
+                   "κ is O(1) on some scenes and not on others" if small >= 0.25 * len(ks) else
+                   "κ is not O(1) in practice")
+        why = ""
+        if finite(f.get("rel_t")) and finite(f.get("r")) and f["top"] == top[2]:
+            why = (", whose grid's occupancy is uneven (σ_Θ/Θ_avg = %s) and whose rays favour the crowded cells "
+                   "(r = %s)" % (num(f["rel_t"]), num(f["r"])))
+        out.append("**%s**: κ ≤ 2 for %d of %d scene-class pairs (section 2); the largest is %s, on %s's %s rays%s." %
+                   (verdict, small, len(ks), num(top[0]), top[1], top[2], why))
+    agree, differ = [], []
+    for fam, v in (scaling or {}).items():
+        sl = v["slopes"]["auto"]
+        case = PAPER[PAPER_CASE.get(fam, "case1")]["lambda"]
+        if not all(finite(sl.get(k)) for k in ("p_tot", "theta_tot")):
+            continue
+        off = max(abs(sl["p_tot"] - case["p_tot"]), abs(sl["theta_tot"] - case["theta_tot"]))
+        (agree if off <= 0.15 else differ).append((fam, off, sl))
+    if agree or differ:
+        text = "**Table 2's exponents for p_tot and Θ_tot hold within 0.15 on %s** (section 3, `--grid-res auto`)" % (
+            ", ".join(f for f, _, _ in agree) if agree else "no family")
+        if differ:
+            f, off, sl = max(differ, key=lambda x: x[1])
+            case = PAPER[PAPER_CASE.get(f, "case1")]["lambda"]
+            text += ("; the largest departure is on %s: p_tot as N^%s and Θ_tot as N^%s against the paper's N^%s and "
+                     "N^%s" % (f, num(sl["p_tot"], 2), num(sl["theta_tot"], 2), exponent(case["p_tot"]),
+                               exponent(case["theta_tot"])))
+        out.append(text + ".")
+    if afacts:
+        worst = max(afacts, key=lambda f: f["grid_over_embree"])
+        uneven = [f for f in afacts if finite(f.get("theta_ratio"))]
+        most_uneven = max(uneven, key=lambda f: f["theta_ratio"]) if uneven else None
+        where = (" (its most uneven grid: Θ_max/Θ_avg = %s)" % num(worst["theta_ratio"])
+                 if most_uneven is worst and len(uneven) > 1 else "")
+        out.append("**The uniform grid loses %s× to a hierarchy (the median frame against Embree's), most on "
+                   "%s: %s×**%s (section 5); grid2, which refines the crowded cells, takes %s× Embree's there." %
+                   (ratio(statistics.median(f["grid_over_embree"] for f in afacts)), worst["scene"],
+                    ratio(worst["grid_over_embree"]), where, ratio(worst["s"]["grid2"] / worst["s"]["embree"])))
+    if not out:
+        return []
+    lines = ["## The findings", "", "Three findings, each from the measurements below:", ""]
+    for i, t in enumerate(out, 1):
+        lines += ["%d. %s" % (i, t)]
+    lines.append("")
+    if rsum:
+        title = next(iter(rsum))
+        best = max(rsum[title], key=lambda m: rsum[title][m][0])
+        lines += ["The cost model, judged on the choices it makes (section 6): the %s model predicts the ratio of "
+                  "two grid resolutions' costs within the target on %d of %d scene-class rows." %
+                  (best, *rsum[title][best]), ""]
+    return lines
+
+
 # ---------------------------------------------------------------------------------------------- main
 
 def main():
@@ -740,11 +863,16 @@ def main():
     record = {"meta": meta, "scenes": scenes, "sweeps": {}, "kappa": {}, "scaling": {}}
     try:
         header(page, meta, scenes, steps)
+        findings_at = len(page.lines)
         summary = sweep_section(page, data_dir, scenes, record)
         if summary:
             pick_section(page, data_dir, summary)
-        kappa_section(page, data_dir, scenes, record)
-        scaling_section(page, data_dir, meta, record)
+        kfacts = kappa_section(page, data_dir, scenes, record)
+        scaling = scaling_section(page, data_dir, meta, record)
+        levels_section(page, data_dir, scenes, record)
+        afacts = accels_section(page, data_dir, scenes, record)
+        rsum = ratios_section(page, data_dir, meta, record)
+        page.lines[findings_at:findings_at] = findings(kfacts, scaling, afacts, rsum)
         staged = list(page.staged)
         for name, obj in (("results/data.json", record),
                           ("results/manifest.json", {"version": 1, "dpi": DPI, "tables": page.tables,

@@ -46,7 +46,9 @@ FrameAccelerator build_grid(const Scene& scene, const RenderSettings& settings, 
   if (request.build.grid_res == "model") {
     KAPPA_CHECK(pilot != nullptr);
     begin_phase(progress, "grid: choosing the resolution by the cost model", 0);
-    out.grid_choice = choose_grid_by_model(scene, settings, *pilot, request.build, calibration);
+    // --grid-res model alone: the coherent model where fitted (it chose
+    // resolutions nearer the fastest: issue 50's note).
+    out.grid_choice = choose_grid_by_model(scene, settings, *pilot, request.build, calibration, grid_choice_model(calibration));
     out.accel = std::move(out.grid_choice->grid);
   } else if (pilot && pilot->grid && is_default_grid(request.build)) {
     out.accel = std::move(pilot->grid);  // GridOptions{}: what make_accelerator would build again
@@ -67,7 +69,7 @@ double predict_grid(const Scene& scene, const RenderSettings& settings, const Ac
                     std::optional<GridChoice>& by_model, nlohmann::ordered_json& skipped) {
   try {
     if (request.build.grid_res == "model") {
-      by_model = predict_grid_by_model(scene, settings, pilot, request.build, calibration);
+      by_model = predict_grid_by_model(scene, settings, pilot, request.build, calibration, *choice_settings.traversal);
       return by_model->predicted_s;
     }
     if (pilot.grid && is_default_grid(request.build))
@@ -121,7 +123,12 @@ FrameAccelerator build_frame_accelerator(const Scene& scene, const RenderSetting
   }
   FramePilot pilot = run_frame_pilot(scene, settings, request.frame_paths, grid2.get(), progress);
   begin_phase(progress, "accel: predicting each accelerator's cost from the pilot", 0);
-  const ChoiceSettings choice_settings = frame_choice_settings(pilot, settings, request.build, calibration);
+  // --accel auto weighs grid against grid2 and naive by the extended model:
+  // with the pilot's estimate of the frame's cold steps, the coherent one
+  // chose worse between grid and grid2 (issue 50's note: the Cornell box and
+  // Sponza).
+  const ChoiceSettings choice_settings =
+      frame_choice_settings(pilot, settings, request.build, calibration, calibration.extended);
   const bool with_naive = std::find(candidates.begin(), candidates.end(), "naive") != candidates.end();
   const double naive_s = with_naive ? naive_seconds(pilot, choice_settings, calibration, scene.triangles.size())
                                     : std::numeric_limits<double>::infinity();
@@ -132,7 +139,7 @@ FrameAccelerator build_frame_accelerator(const Scene& scene, const RenderSetting
   std::optional<GridChoice> model_choice;
   const double grid_s = predict_grid(scene, settings, request, calibration, pilot, choice_settings, model_choice, skipped);
   predicted["grid"] = std::isfinite(grid_s) ? nlohmann::ordered_json(grid_s) : nlohmann::ordered_json(nullptr);
-  const Grid2Model grid2_model = grid2_choice_model(calibration);
+  const Grid2Model& grid2_model = calibration.grid2;
   const double grid2_s = grid2 ? predict_grid2(*grid2, pilot.pilot.segments, choice_settings, grid2_model).total_s()
                                : std::numeric_limits<double>::infinity();
   predicted["grid2"] = grid2 ? nlohmann::ordered_json(grid2_s) : nlohmann::ordered_json(nullptr);
@@ -157,7 +164,7 @@ FrameAccelerator build_frame_accelerator(const Scene& scene, const RenderSetting
       out.accel = make_accelerator("naive", scene.triangles, request.build, progress);
     } else if (model_choice) {
       begin_phase(progress, "grid: building the cost model's choice", 0);
-      build_grid_choice(*model_choice, scene, settings, pilot, request.build, calibration);
+      build_grid_choice(*model_choice, scene, settings, pilot, request.build, calibration, calibration.extended);
       out.accel = std::move(model_choice->grid);
       out.grid_choice = std::move(model_choice);  // the report's grid_choice is the grid that ran's
     } else {

@@ -29,9 +29,9 @@ FramePilot run_frame_pilot(const Scene& scene, const RenderSettings& settings, d
 }
 
 ChoiceSettings frame_choice_settings(const FramePilot& pilot, const RenderSettings& settings, const AccelOptions& build,
-                                     const Calibration& calibration) {
+                                     const Calibration& calibration, const TimeModel& traversal) {
   ChoiceSettings s;
-  s.traversal = &grid_choice_model(calibration);
+  s.traversal = &traversal;
   s.build = &calibration.build;
   const double pilot_paths = double(pilot.pilot.width) * double(pilot.pilot.height);
   s.rays_scale.fill(pilot.frame_paths / pilot_paths);
@@ -45,9 +45,9 @@ ChoiceSettings frame_choice_settings(const FramePilot& pilot, const RenderSettin
 }
 
 GridChoice predict_grid_by_model(const Scene& scene, const RenderSettings& settings, const FramePilot& pilot,
-                                 const AccelOptions& build, const Calibration& calibration) {
+                                 const AccelOptions& build, const Calibration& calibration, const TimeModel& traversal) {
   const auto start = std::chrono::steady_clock::now();
-  const ChoiceSettings choice_settings = frame_choice_settings(pilot, settings, build, calibration);
+  const ChoiceSettings choice_settings = frame_choice_settings(pilot, settings, build, calibration, traversal);
   GridChoice out;
   out.resolution = choose_resolution_by_model(scene.triangles, pilot.pilot.segments, choice_settings, false,
                                               pilot.grid.get(), false);
@@ -57,9 +57,9 @@ GridChoice predict_grid_by_model(const Scene& scene, const RenderSettings& setti
 }
 
 void build_grid_choice(GridChoice& out, const Scene& scene, const RenderSettings& settings, FramePilot& pilot,
-                       const AccelOptions& build, const Calibration& calibration) {
+                       const AccelOptions& build, const Calibration& calibration, const TimeModel& traversal) {
   const auto start = std::chrono::steady_clock::now();
-  const ChoiceSettings choice_settings = frame_choice_settings(pilot, settings, build, calibration);
+  const ChoiceSettings choice_settings = frame_choice_settings(pilot, settings, build, calibration, traversal);
   ResolutionChoice& choice = out.resolution;
   build_chosen_grid(choice, scene.triangles, choice_settings, pilot.grid.get());
   out.grid = choice.grid ? std::move(choice.grid) : std::move(pilot.grid);
@@ -102,9 +102,9 @@ void build_grid_choice(GridChoice& out, const Scene& scene, const RenderSettings
 }
 
 GridChoice choose_grid_by_model(const Scene& scene, const RenderSettings& settings, FramePilot& pilot,
-                                const AccelOptions& build, const Calibration& calibration) {
-  GridChoice out = predict_grid_by_model(scene, settings, pilot, build, calibration);
-  build_grid_choice(out, scene, settings, pilot, build, calibration);
+                                const AccelOptions& build, const Calibration& calibration, const TimeModel& traversal) {
+  GridChoice out = predict_grid_by_model(scene, settings, pilot, build, calibration, traversal);
+  build_grid_choice(out, scene, settings, pilot, build, calibration, traversal);
   return out;
 }
 

@@ -37,10 +37,12 @@ struct FramePilot {
 FramePilot run_frame_pilot(const Scene& scene, const RenderSettings& settings, double frame_paths,
                            const Accelerator* through = nullptr, TaskProgress* progress = nullptr);
 
-/// The chooser's settings for the frame: the calibration's models, the
-/// pilot's rays scaled to the frame's, the frame's threads and memory budget.
+/// The chooser's settings for the frame: `traversal` (one of the
+/// calibration's models: grid_choice_model's for --grid-res model, the
+/// extended one for --accel auto) and its build model, the pilot's rays
+/// scaled to the frame's, the frame's threads and memory budget.
 ChoiceSettings frame_choice_settings(const FramePilot& pilot, const RenderSettings& settings, const AccelOptions& build,
-                                     const Calibration& calibration);
+                                     const Calibration& calibration, const TimeModel& traversal);
 
 struct GridChoice {
   ResolutionChoice resolution;        ///< the candidates evaluated and the one chosen
@@ -56,16 +58,19 @@ struct GridChoice {
 /// accelerators before building any). Throws InputError when no candidate
 /// fits `build`'s memory budget.
 GridChoice predict_grid_by_model(const Scene& scene, const RenderSettings& settings, const FramePilot& pilot,
-                                 const AccelOptions& build, const Calibration& calibration);
+                                 const AccelOptions& build, const Calibration& calibration,
+                                 const TimeModel& traversal);
 
 /// Builds the chosen grid (the pilot's grid, when it is the chosen
 /// resolution, becomes the frame's) and writes the report and summary; the
 /// calibration's `source` names it. Throws InputError when no candidate fits.
 void build_grid_choice(GridChoice& choice, const Scene& scene, const RenderSettings& settings, FramePilot& pilot,
-                       const AccelOptions& build, const Calibration& calibration);
+                       const AccelOptions& build, const Calibration& calibration,
+                       const TimeModel& traversal);
 
 /// Both: the grid --grid-res model gives the frame.
 GridChoice choose_grid_by_model(const Scene& scene, const RenderSettings& settings, FramePilot& pilot,
-                                const AccelOptions& build, const Calibration& calibration);
+                                const AccelOptions& build, const Calibration& calibration,
+                                const TimeModel& traversal);
 
 }  // namespace kappa

@@ -32,7 +32,7 @@ RES = re.compile(r"(\d+)x(\d+)x(\d+)")
 NONE = "—"
 BAD_WORDS = re.compile(r"\b(nan|inf|infinity|none|null)\b", re.IGNORECASE)
 # What the quick run must plot: one sweep per assets/ scene, the kappa bars, the scaling study.
-QUICK_PNGS = ["results/sweep-cornell-box.png", "results/sweep-bunny-lowres.png", "results/kappa.png",
+QUICK_PNGS = ["results/sweep-cornell-box.png", "results/sweep-bunny-lowres.png", "results/kappa.png", "results/accels.png",
               "results/scaling.png"]
 HANG_GUARD_S = 900  # the quick run should take under 3 minutes; this only stops a hang
 
@@ -155,9 +155,13 @@ def check_output(out_dir, quick=True):
         for name in files:
             if ".tmp" in name or name.endswith(".part"):
                 fails.append("temporary file left: %s" % os.path.join(root, name))
-    for section in ("## 1.", "## 2.", "## 3."):
+    for section in ("## The findings", "## 1.", "## 2.", "## 3.", "## 4.", "## 5.", "## 6."):
         if section not in page:
             fails.append("the page lacks its section '%s'" % section)
+    # The opening states the study's findings, numbered, before the first section.
+    opening = page.split("## 1.", 1)[0]
+    if not re.search(r"^1\. \*\*", opening, re.M) or not re.search(r"^3\. \*\*", opening, re.M):
+        fails.append("the page's opening does not state three numbered findings")
     return fails
 
 

@@ -199,6 +199,34 @@ TEST(AccelChoice, ARenderThatCountsCellsChoosesBetweenTheCellBasedAccelerators) 
   }
 }
 
+TEST(AccelChoice, GridResModelChoosesByTheCoherentModelAndAutoByTheExtendedOne) {
+  // A calibration with a coherent model (the built-in constants have one):
+  // --grid-res model predicts with it; --accel auto weighs the grid against
+  // grid2 by the extended model, also for the resolution it would run.
+  test::TempDir tmp;
+  nlohmann::json cal = to_json(builtin_calibration());
+  ASSERT_TRUE(cal.at("coherent").at("grid").is_object());
+  test::write_file(tmp / "cal.json", cal.dump());
+  const std::string scene = (test::assets_dir() / "cornell-box" / "scene.json").string();
+  const std::vector<std::string> frame = {"render", scene, "--spp", "1", "--width", "32", "--height", "32",
+                                          "--calibration", (tmp / "cal.json").string()};
+  auto args = frame;
+  args.insert(args.end(), {"--accel", "grid", "--grid-res", "model"});
+  EXPECT_EQ(render_report(args, tmp, "model").at("grid_choice").at("model"), "coherent");
+  args = frame;
+  args.insert(args.end(), {"--accel", "auto", "--grid-res", "model"});
+  const auto both = render_report(args, tmp, "auto");
+  EXPECT_EQ(both.at("accel_choice").at("models"), nlohmann::json({{"grid", "extended"}, {"grid2", "extended"}}));
+  if (both.at("grid_choice").is_object()) EXPECT_EQ(both.at("grid_choice").at("model"), "extended");
+  // Without a coherent model, --grid-res model falls back to the extended one.
+  nlohmann::json without = cal;
+  without["coherent"] = nullptr;
+  test::write_file(tmp / "cal.json", without.dump());
+  args = frame;
+  args.insert(args.end(), {"--accel", "grid", "--grid-res", "model"});
+  EXPECT_EQ(render_report(args, tmp, "fallback").at("grid_choice").at("model"), "extended");
+}
+
 TEST(AccelChoice, AutoIsRenderOnly) {
   test::TempDir tmp;
   const auto obj = four_triangles(tmp).string();
