@@ -10,7 +10,8 @@
 
 namespace kappa {
 
-/// The built-in calibration: eq 10's and the extended model's constants.
+/// The built-in calibration: eq 10's, the extended and the coherent model's,
+/// the build's, naive's and grid2's constants (no machine probe time).
 const Calibration& builtin_calibration();
 
 }  // namespace kappa

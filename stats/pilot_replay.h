@@ -5,9 +5,10 @@
 // Each run of one frame tile's segments is replayed in the pilot's order
 // against a table of recent cells empty at the run's start, as the frame's
 // tile walks its own. For the rays that go anywhere (shadow and bounce rays)
-// the pilot's cold steps per ray are then the frame's: a cell they enter is
-// warm when some recent ray of the tile entered it, and the pilot's
-// neighbouring paths are as scattered as the frame's. Camera rays differ:
+// the pilot's cold steps per ray are then close to the frame's: a cell they
+// enter is warm when some recent ray of the tile entered it, and the
+// pilot's neighbouring paths are about as scattered as the frame's (their
+// cold tests less so: stats/README.md gives the measured gaps). Camera rays differ:
 // in the frame a pixel's samples follow one another, so sample s + 1 finds
 // the cells of sample s's camera ray, less those its path's other rays
 // evicted, while the pilot's next camera ray is a pixel several frame
@@ -15,8 +16,12 @@
 // (the first sample of a pixel, after its neighbour's path), and again once
 // its path's other segments were walked (the pixel's later samples). The
 // frame's camera rays are 1/spp first samples: its cold counts blend the two.
-// Measured against frames of the bunny at 4, 16 and 64 spp, the walk where
-// it is overstated the frame's cold camera steps 2.4-7x (issue 50's note).
+// Without the second walk, the cold camera steps came out 1.5-2.8x the
+// frame's at 16 spp on four shared scenes (issue 50's note). Not modelled:
+// a large film's tiles get few pilot paths each (a 1920 x 1080 frame has
+// 8,160 tiles for at most 16,384 pilot pixels), so their first walks are
+// colder than the frame's; and a frame whose passes split a pixel's samples
+// (budgets, checkpoints) finds fewer of them warm than the blend assumes.
 #pragma once
 
 #include <array>

@@ -4,8 +4,10 @@
 // records its rays' segments (origin, direction, the hit t); each candidate
 // grid walks them without testing a triangle (count_closest_walk), so its
 // cells, lists and tests per ray -- and with them its kappa, which moves
-// with the resolution -- are its own; the extended model turns those counts
-// into seconds, the build model gives the build's. The choice depends only
+// with the resolution -- are its own, and their cold steps are estimated
+// (stats/pilot_replay.h); the calibration's coherent model, or the extended
+// one without it, turns those counts into seconds (--accel auto passes the
+// extended one), the build model gives the build's. The choice depends only
 // on the scene, the settings and the constants: never on a time measured in
 // the run.
 #pragma once
@@ -34,7 +36,7 @@ struct Candidate {
   double lambda = 0;           ///< N_c / N
   std::uint64_t theta_tot = 0;  ///< the whole grid's: eq 19's for a counting grid (counting_grid), else its own
   std::uint64_t bytes = 0;     ///< the whole grid's, plus the per-cell statistics' when they are on
-  double traversal_s = 0;      ///< N_r E(T): the frame's rays by the extended model, over the frame's threads (wall seconds)
+  double traversal_s = 0;      ///< N_r E(T): the frame's rays by the settings' traversal model, over the frame's threads (wall seconds)
   double build_s = 0;          ///< T_build, by the build model
   double total_s() const { return traversal_s + build_s; }
 };
@@ -46,7 +48,7 @@ std::size_t smallest_within(std::span<const Candidate> candidates, double tolera
 
 /// The constants and the frame a choice is made for.
 struct ChoiceSettings {
-  const TimeModel* traversal = nullptr;  ///< the extended model (or eq 10's)
+  const TimeModel* traversal = nullptr;  ///< the coherent, extended (or eq 10's) model
   const BuildModel* build = nullptr;
   /// Rays of each class in the frame per ray of that class in the pilot.
   std::array<double, kRenderClasses> rays_scale{};

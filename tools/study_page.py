@@ -13,8 +13,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 # Every figure is saved at FIGSIZE * DPI pixels exactly (no tight bounding box), so a test can check it.
 DPI = 80
-FIGSIZE = {"sweep": (13.0, 3.5), "kappa": (11.0, 4.5), "scaling": (14.0, 6.5), "accels": (11.0, 4.5),
-           "levels": (11.0, 4.0)}
+FIGSIZE = {"sweep": (13.0, 3.5), "kappa": (11.0, 4.5), "scaling": (14.0, 6.5), "accels": (11.0, 4.5)}
 RENDER_CLASSES = ["camera", "shadow", "bounce1", "bounce2", "bounce3+"]
 # One colour per ray class on every figure (and for the sweep's own classes: bounce as bounce1, lines grey).
 CLASS_COLOURS = {"camera": "tab:blue", "shadow": "tab:orange", "bounce1": "tab:green", "bounce2": "tab:red",

@@ -62,20 +62,23 @@ def ratios_section(page, data_dir, meta, record):
     best = max(models, key=lambda m: summary[res_title][m][0])
     page.para("**A choice needs the ratio of two candidates' costs, not their seconds: the %s model predicts the "
               "ratio of two grid resolutions' costs within the target (median |error| ≤ %s, worst ≤ %s) on %d of "
-              "%d scene-class rows, and grid's against grid2's on %d of %d.** Its absolute predictions, in the "
-              "κ renders' reports, still move with the machine's speed, which drifts up to 1.5× within a minute "
-              "here; a ratio measured with the candidates taking turns does not." %
+              "%d scene-class rows, and grid's against grid2's on %d of %d.** A ratio measured with the "
+              "candidates taking turns in one run is free of the machine's drift, which an absolute prediction "
+              "is not." %
               (best, num(cmr.TARGET_MEDIAN), num(cmr.TARGET_WORST), summary[res_title][best][0],
                summary[res_title][best][1], summary[g2_title][best][0], summary[g2_title][best][1]))
-    page.para("`tools/cost_model_check.sh --ratios -n %d` (its settings in the header's list of steps): each "
-              "shared scene rendered with statistics on through the grid at λ = 8, 32 and 128 and through grid2, "
-              "every candidate in turn within each run. For each pair of candidates and ray class, the error is "
+    args_path = os.path.join(data_dir, "ratios.args")
+    command = open(args_path).read().strip() if os.path.exists(args_path) else "tools/cost_model_check.sh --ratios"
+    densities = sorted({float(c.split("-", 1)[1]) for by_c in reports.values() for c in by_c if c.startswith("grid-")})
+    page.para("`%s` (%d runs): each shared scene rendered with statistics on through the grid at λ = %s and "
+              "through grid2, every candidate in turn within each run. For each pair of candidates and ray class, the error is "
               "(predicted_A / predicted_B) / (measured_A / measured_B) − 1 in one run, its median over the runs "
               "the pair's; a row gives the median and the worst |error| over its pairs (classes of at least %s "
               "rays). The extended model is eq 10 with per-class constants, occupied cells, hits and cache misses; "
               "the coherent model adds a cost per cold cell step and per test in a cold cell (a cell the tile's "
               "recent walks did not enter: `stats/recent_cells.h`). The calibration: `%s`." %
-              (runs, num(cmr.MIN_RAYS), os.path.basename(calibration) if calibration else NONE))
+              (command, runs, ", ".join(num(d) for d in densities), num(cmr.MIN_RAYS),
+               os.path.basename(calibration) if calibration else NONE))
     for title, _ in kinds:
         page.add("### %s" % title)
         page.add()

@@ -417,8 +417,8 @@ def kappa_section(page, data_dir, scenes, record):
         facts.append({"scene": sc["name"], "k": ks, "top": top, "r": v.get("r"), "rel_p": rel_p, "rel_t": rel_t,
                       "empty": g["empty_fraction"]})
         record["kappa"][sc["name"]] = {"res": g["res"], "N_c": g["N_c"], "kappa": ks}
-    if not rows:
-        page.para("No scene was rendered.")
+    if not rows or not facts:
+        page.para("No scene was rendered." if not rows else "No class has a finite κ.")
         return facts
     page.para(kappa_finding(facts))
     page.para("`kappa render SCENE --grid-res auto --stats on` (settings in the header): κ (eq 8) of each ray "
@@ -533,18 +533,23 @@ def lobe_section(page, data_dir, scenes, record):
     page.add("### κ per BSDF lobe")
     page.add()
     if not rows:
-        page.para("No scene here has bounce rays of more than one lobe (every surface Lambertian).")
+        page.para("No scene here has bounce rays of more than one lobe.")
+        return
+    if not facts:
+        page.para("No lobe's bounce rays have a finite κ here.")
         return
     by_lobe = {}
     for k, _, lobe in facts:
         by_lobe.setdefault(lobe, []).append(k)
-    spread = max(by_lobe, key=lambda l: statistics.median(by_lobe[l]))
-    low = min(by_lobe, key=lambda l: statistics.median(by_lobe[l]))
-    page.para("**Bounce rays collude differently by the lobe that sampled them: %s rays have the largest median κ "
-              "(%s), %s the smallest (%s), over the %d scenes with several lobes.** κ per lobe is eq 8 over that "
-              "lobe's rays alone, so the lobes' κ differ only where their rays meet the crowded cells differently."
-              % (spread, num(statistics.median(by_lobe[spread])), low, num(statistics.median(by_lobe[low])),
-                 len({s_ for _, s_, _ in facts})))
+    medians = {lobe: statistics.median(ks) for lobe, ks in by_lobe.items()}
+    high, low = max(medians, key=medians.get), min(medians, key=medians.get)
+    if len(medians) < 2 or medians[high] == medians[low]:
+        page.para("**The bounce rays' κ does not differ by lobe here (median %s).**" % num(medians[high]))
+    else:
+        page.para("**Bounce rays collude differently by the lobe that sampled them: %s rays have the largest median "
+                  "κ (%s), %s the smallest (%s), over the %d scenes with several lobes.** κ per lobe is eq 8 over "
+                  "that lobe's rays alone." % (high, num(medians[high]), low, num(medians[low]),
+                                               len({s_ for _, s_, _ in facts})))
     page.para("Every bounce ray (bounce1 to bounce3+) counted by the lobe its direction was sampled from "
               "(`rays.bounce_by_lobe`, the κ renders above), on the scenes with more than one lobe.")
     page.table(["scene", "lobe", "rays", "cells per ray", "tests per ray", "κ"],
@@ -686,8 +691,9 @@ def scaling_headline(scaling):
         return "Against N (triangles): per family, auto solid and model dashed"
     text = "Against N (triangles), at auto: cells per ray grow as N^%s to N^%s (the paper: N^1/3)" % (
         num(min(p)[0], 2), num(max(p)[0], 2))
-    grows = [f for s_, f in k if s_ > 0.1]
-    text += "; κ grows with N on %s" % ", ".join(grows) if grows else "; κ stays flat on every family"
+    moves = ["%s (N^%s)" % (f, num(s_, 2)) for s_, f in k if abs(s_) > 0.1]
+    text += ("; κ moves with N on %s" % ", ".join(moves) if moves else
+             "; κ stays within N^±0.1 on %s" % ", ".join(f for _, f in k))
     return text + " (model dashed)"
 
 
@@ -824,13 +830,14 @@ def findings(kfacts, scaling, afacts, rsum):
         most_uneven = max(uneven, key=lambda f: f["theta_ratio"]) if uneven else None
         where = (" (its most uneven grid: Θ_max/Θ_avg = %s)" % num(worst["theta_ratio"])
                  if most_uneven is worst and len(uneven) > 1 else "")
-        out.append("**The uniform grid loses %s× to a hierarchy (the median frame against Embree's), most on "
-                   "%s: %s×**%s (section 5); grid2, which refines the crowded cells, takes %s× Embree's there." %
-                   (ratio(statistics.median(f["grid_over_embree"] for f in afacts)), worst["scene"],
-                    ratio(worst["grid_over_embree"]), where, ratio(worst["s"]["grid2"] / worst["s"]["embree"])))
+        out.append("**The uniform grid's frames take a median %s× Embree's (a hierarchy's), at most %s× on %s**%s "
+                   "(section 5); grid2, which refines the crowded cells, takes %s× Embree's there." %
+                   (ratio(statistics.median(f["grid_over_embree"] for f in afacts)), ratio(worst["grid_over_embree"]),
+                    worst["scene"], where, ratio(worst["s"]["grid2"] / worst["s"]["embree"])))
     if not out:
         return []
-    lines = ["## The findings", "", "Three findings, each from the measurements below:", ""]
+    lines = ["## The findings", "", "%s, each from the measurements below:" %
+             {1: "One finding", 2: "Two findings", 3: "Three findings"}[len(out)], ""]
     for i, t in enumerate(out, 1):
         lines += ["%d. %s" % (i, t)]
     lines.append("")

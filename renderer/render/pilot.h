@@ -1,8 +1,8 @@
-// The pilot of --grid-res model: a small render of the frame's own paths
-// (its camera, film aspect, lights, depth and sampler) at one sample per
-// pixel, every query answered by an exact accelerator and recorded as a
-// segment (stats/resolution_choice.h), so that candidate grids can count
-// the frame's walks without rendering it.
+// The pilot of --grid-res model and --accel auto: a small render of the
+// frame's own paths (its camera, film aspect, lights, depth and sampler) at
+// one sample per pixel, every query answered by an exact accelerator and
+// recorded as a segment (stats/pilot_replay.h), so that candidate
+// structures can count the frame's walks without rendering it.
 #pragma once
 
 #include <array>
