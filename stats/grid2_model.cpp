@@ -12,7 +12,7 @@
 namespace kappa {
 
 std::array<QueryLoad, kRenderClasses> count_segments(const NestedGrid& grid, std::span<const PilotSegment> segments,
-                                                     double frame_spp) {
+                                                     std::optional<double> frame_spp) {
   const double working_set = double(grid.bytes()) + double(grid.info().N * sizeof(Triangle));
   return replay_segments(
       segments,
@@ -25,7 +25,7 @@ std::array<QueryLoad, kRenderClasses> count_segments(const NestedGrid& grid, std
 Grid2Prediction predict_grid2(const NestedGrid& grid, std::span<const PilotSegment> segments, const ChoiceSettings& settings,
                               const Grid2Model& model) {
   Grid2Prediction p;
-  const auto loads = count_segments(grid, segments, settings.frame_spp);
+  const auto loads = count_segments(grid, segments, cold_steps_spp(model.traversal, settings.frame_spp));
   // Thread-seconds by the model (as calibrate times them), shared by the
   // frame's threads; the build model gives its wall time.
   for (std::size_t k = 0; k < kRenderClasses; ++k)

@@ -29,10 +29,10 @@ struct Grid2Model {
 /// The pilot's segments through grid2's own queries, one load per class:
 /// its leaf steps, occupied leaves, tests, skips and hits, with working set
 /// = grid2's bytes and the triangles', cold steps those of a frame of
-/// `frame_spp` samples per pixel (stats/pilot_replay.h). The integer sums
-/// do not depend on the thread count.
+/// `frame_spp` samples per pixel (stats/pilot_replay.h), none without it.
+/// The integer sums do not depend on the thread count.
 std::array<QueryLoad, kRenderClasses> count_segments(const NestedGrid& grid, std::span<const PilotSegment> segments,
-                                                     double frame_spp = 1);
+                                                     std::optional<double> frame_spp = 1.0);
 
 /// What grid2 is predicted to cost for a frame.
 struct Grid2Prediction {

@@ -77,16 +77,18 @@ struct ReplayClassSums {
 };
 using ReplaySums = std::array<ReplayClassSums, kRenderClasses>;
 
-/// Counts one walk's cells and tests and its cold ones (accel/recorder.h);
-/// a repeat walk counts only its cold ones, into the repeat sums.
+/// Counts one walk's cells and tests and, with a table of recent cells, its
+/// cold ones (accel/recorder.h); a repeat walk counts only its cold ones,
+/// into the repeat sums.
 struct ReplayRecorder {
-  RecentCells& recent;
+  RecentCells* recent;  ///< null: cold steps not counted
   ReplayClassSums& sums;
   bool repeat = false;
   bool cold = false;  ///< the step last entered was cold
   template <class BoxFn>
   void cell(std::uint64_t c, int, BoxFn&&) {
-    cold = recent.visit(c);
+    if (!recent) return;
+    cold = recent->visit(c);
     (repeat ? sums.repeat_cold_cells : sums.cold_cells) += cold;
   }
   void test() { (repeat ? sums.repeat_cold_tests : sums.cold_tests) += cold; }
@@ -102,29 +104,33 @@ struct ReplayRecorder {
 /// The loads of `segments` (a pilot's: grouped by frame tile) walked by
 /// `walk(segment, recorder)`, which returns whether the walk hit, with the
 /// working set `working_set_bytes` and the cold counts of a frame of
-/// `frame_spp` samples per pixel. Integer sums: the same for any thread count.
+/// `frame_spp` samples per pixel; without `frame_spp` (a model with no cold
+/// terms) no cold step is counted, nor any camera segment walked twice.
+/// Integer sums: the same for any thread count.
 template <class Walk>
 std::array<QueryLoad, kRenderClasses> replay_segments(std::span<const PilotSegment> segments, const Walk& walk,
-                                                      double working_set_bytes, double frame_spp) {
+                                                      double working_set_bytes, std::optional<double> frame_spp) {
   tbb::enumerable_thread_specific<detail::ReplaySums> per_thread;
   for_each_tile_run(segments, [&](std::size_t begin, std::size_t end) {
     detail::ReplaySums& sums = per_thread.local();
-    RecentCells recent;
+    std::optional<RecentCells> recent;
+    if (frame_spp) recent.emplace();
+    RecentCells* table = recent ? &*recent : nullptr;
     std::optional<std::size_t> camera;  // the current path's camera segment, to walk again at its end
     const auto walk_camera_again = [&] {
       if (!camera) return;
-      detail::ReplayRecorder again{recent, sums[kCamera], true};
+      detail::ReplayRecorder again{table, sums[kCamera], true};
       walk(segments[*camera], again);
       camera.reset();
     };
     for (std::size_t i = begin; i < end; ++i) {
       const PilotSegment& s = segments[i];
       if (s.ray_class == kCamera) walk_camera_again();
-      detail::ReplayRecorder recorder{recent, sums[s.ray_class]};
+      detail::ReplayRecorder recorder{table, sums[s.ray_class]};
       const bool hit = walk(s, recorder);
       ++sums[s.ray_class].rays;
       sums[s.ray_class].hits += hit;
-      if (s.ray_class == kCamera) camera = i;
+      if (s.ray_class == kCamera && table) camera = i;
     }
     walk_camera_again();
   });
@@ -132,7 +138,7 @@ std::array<QueryLoad, kRenderClasses> replay_segments(std::span<const PilotSegme
   per_thread.combine_each([&](const detail::ReplaySums& t) {
     for (std::size_t k = 0; k < kRenderClasses; ++k) all[k].add(t[k]);
   });
-  const double first = 1.0 / std::max(1.0, frame_spp);
+  const double first = 1.0 / std::max(1.0, frame_spp.value_or(1.0));
   std::array<QueryLoad, kRenderClasses> loads{};
   for (std::size_t k = 0; k < kRenderClasses; ++k) {
     const detail::ReplayClassSums& a = all[k];

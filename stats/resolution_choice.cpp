@@ -56,8 +56,13 @@ void search_unimodal(std::size_t count, std::size_t start, const std::function<d
     if (!(cost(i) <= least * (1 + tolerance))) break;
 }
 
+std::optional<double> cold_steps_spp(const TimeModel& model, double frame_spp) {
+  if (model.form != ModelForm::coherent) return std::nullopt;
+  return frame_spp;
+}
+
 std::array<QueryLoad, kRenderClasses> count_segments(const UniformGrid& grid, std::span<const PilotSegment> segments,
-                                                     std::optional<double> grid_bytes, double frame_spp) {
+                                                     std::optional<double> grid_bytes, std::optional<double> frame_spp) {
   const double working_set = grid_bytes.value_or(double(grid.bytes())) + double(grid.info().N * sizeof(Triangle));
   return replay_segments(
       segments,
@@ -138,7 +143,8 @@ Candidate evaluate_candidate(const UniformGrid& grid, std::span<const PilotSegme
     c.theta_tot = info.theta_tot;
   }
   c.bytes = std::uint64_t(std::min(grid_bytes + settings.stats_bytes_per_cell * double(info.resolution.cells()), 1.8e19));
-  const auto loads = count_segments(grid, segments, grid_bytes, settings.frame_spp);
+  const auto loads =
+      count_segments(grid, segments, grid_bytes, cold_steps_spp(*settings.traversal, settings.frame_spp));
   // The model predicts thread-seconds (as calibrate times them); the frame's
   // threads share them, while the build's model gives its wall time.
   for (std::size_t k = 0; k < kRenderClasses; ++k)

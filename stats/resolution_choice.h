@@ -62,10 +62,14 @@ struct ChoiceSettings {
 /// Counts `segments` on `grid` (its walks without triangle tests) into one
 /// load per class, hits from the pilot, working set = `grid_bytes` (default:
 /// the grid's own bytes) and the triangles', cold steps those of a frame of
-/// `frame_spp` samples per pixel (stats/pilot_replay.h).
+/// `frame_spp` samples per pixel (stats/pilot_replay.h), none without it.
 std::array<QueryLoad, kRenderClasses> count_segments(const UniformGrid& grid, std::span<const PilotSegment> segments,
                                                      std::optional<double> grid_bytes = std::nullopt,
-                                                     double frame_spp = 1);
+                                                     std::optional<double> frame_spp = 1.0);
+
+/// The frame's samples per pixel when `model` has cold-step terms, else none:
+/// a model without them is not worth the replay's table lookups.
+std::optional<double> cold_steps_spp(const TimeModel& model, double frame_spp);
 
 /// The cells the segments' walks visit on `grid`, as a bitset of N_c bits:
 /// its lists play no part (a walk stops at the pilot's hit), so an empty grid

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,29 @@ TEST(PilotReplay, ThePilotsSegmentsAndColdStepsAreTheSameForAnyThreadCount) {
   EXPECT_EQ(counted, cold(one, 2));
   EXPECT_GT(counted[2 * kCamera], 0.0);
   EXPECT_GT(counted[2 * kShadow], 0.0);
+}
+
+TEST(PilotReplay, AModelWithoutColdTermsCountsTheSameStepsButNoColdOnes) {
+  // --accel auto predicts by the extended model: the replay's table and the
+  // camera rays' second walk would be work for nothing.
+  EXPECT_FALSE(cold_steps_spp(extended_model(1 << 20), 16).has_value());
+  EXPECT_EQ(cold_steps_spp(coherent_model(1 << 20), 16), std::optional<double>(16));
+
+  Warnings warnings;
+  const Scene scene = load_scene(test::assets_dir() / "cornell-box" / "scene.json", warnings);
+  const UniformGrid grid(scene.triangles, dense());
+  const Pilot pilot = run_pilot(scene, 64, 64, 4096, grid, RenderSettings{});
+  const auto with_cold = count_segments(grid, pilot.segments, std::nullopt, 16);
+  const auto without = count_segments(grid, pilot.segments, std::nullopt, std::nullopt);
+  for (std::size_t k = 0; k < kRenderClasses; ++k) {
+    const QueryLoad &a = with_cold[k], &b = without[k];
+    EXPECT_TRUE(a.rays == b.rays && a.cells == b.cells && a.occupied == b.occupied && a.tests == b.tests &&
+                a.skips == b.skips && a.hits == b.hits)
+        << "class " << k;
+    EXPECT_EQ(b.cold_cells, 0.0) << "class " << k;
+    EXPECT_EQ(b.cold_tests, 0.0) << "class " << k;
+  }
+  EXPECT_GT(with_cold[kCamera].cold_cells, 0.0);
 }
 
 TEST(PilotReplay, CameraRaysColdStepsAreTheFramesNotTheSparsePilots) {
