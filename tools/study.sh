@@ -88,8 +88,8 @@ mkdir -p "$work/sweep" "$work/kappa" "$work/model" "$work/grid2" "$work/accel" "
 start=$(date +%s)
 uptime_before="$(uptime)"
 
-# Settings. The full run is sized for 30 minutes on 2 cores (about 13 estimated from its parts, each timed
-# on the project's 2-core VM), the quick run for 3 (about 1.5 measured). The page's header gives the
+# Settings. The full run is sized for 30 minutes on 2 cores (it took 19 on the project's 2-core VM on
+# 2026-12-07, 6 of them the ratio check), the quick run for 3 (it took 30 s). The page's header gives the
 # measured time of each kind of step.
 if [ "$quick" = 1 ]; then
   mode=quick
