@@ -123,7 +123,6 @@ class FaultInjection : public ::testing::Test {
     for (const auto& [name, bytes] : old_bytes) write_file(tmp / "out" / name, bytes);
   }
 
-  /// Checks the folder after a run that ended with `code`, into `outcome`.
   /// The output a name beside the outputs stands for, if it is the
   /// temporary name `killed` (a process killed by a signal) would give it
   /// (.kappa-PID-N.tmp.EXT), else "".
