@@ -43,6 +43,10 @@ class Accelerator {
 
   /// Bytes of the structure built beside the scene's triangles (0 for naive).
   virtual std::uint64_t bytes() const = 0;
+  /// Of bytes(), the triangle references of the cells' lists: what a
+  /// triangle test reads beside its triangle (stats/time_model.h's memory
+  /// terms); 0 for a structure without lists.
+  virtual std::uint64_t reference_bytes() const { return 0; }
   /// Seconds its build took.
   virtual double build_s() const = 0;
   /// Its own section of the report (keys in stats/README.md), or null for an

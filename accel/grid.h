@@ -140,6 +140,7 @@ class UniformGrid final : public Accelerator, public CellLayout {
   std::string_view name() const override { return "grid"; }
   AccelKind kind() const override { return AccelKind::grid; }
   std::uint64_t bytes() const override { return m_info.bytes; }
+  std::uint64_t reference_bytes() const override { return m_info.theta_tot * sizeof(TriangleId); }
   double build_s() const override { return m_info.build_s; }
   /// The report's "grid" section: res, N_c, N, cell_size, build_s, bytes,
   /// theta_tot, theta_avg, theta_max, max_multiplicity, empty_fraction, degenerate.

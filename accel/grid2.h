@@ -111,6 +111,7 @@ class NestedGrid final : public Accelerator, public CellLayout {
   std::string_view name() const override { return "grid2"; }
   AccelKind kind() const override { return AccelKind::grid2; }
   std::uint64_t bytes() const override { return m_info.bytes; }
+  std::uint64_t reference_bytes() const override { return m_info.theta_tot * sizeof(TriangleId); }
   double build_s() const override { return m_info.build_s; }
   /// The report's "grid2" section (stats/README.md).
   nlohmann::ordered_json report_section() const override;

@@ -176,6 +176,7 @@ bool NestedGrid::walk_sub_grid(const Node& node, const double lo[3], const doubl
   // Returns true to stop the whole walk. The sub-grid's DDA starts at the
   // point where the ray entered the parent cell (clamped into it: that point
   // lies on its boundary, or before the box by the start margin).
+  if constexpr (Walk::Records) ++w.counts.descents;
   const int n[3] = {node.n[0], node.n[1], node.n[2]};
   int s[3], step[3], last[3];
   double next[3], delta[3], l[3], inv_l[3];

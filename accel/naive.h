@@ -25,6 +25,7 @@ class NaiveAccelerator final : public Accelerator {
   AccelKind kind() const override { return AccelKind::naive; }
   /// The list of usable triangle ids: all it keeps beside the triangles.
   std::uint64_t bytes() const override { return m_usable.size() * sizeof(TriangleId); }
+  std::uint64_t reference_bytes() const override { return bytes(); }  // one list, of every usable triangle
   double build_s() const override { return m_build_s; }
 
   /// The same queries with an any-hit filter (hit_filter.h) asked of every

@@ -39,6 +39,9 @@ struct WalkCounts {
   std::uint64_t refs = 0;   ///< sum of Theta_i over them (before mailboxing)
   std::uint64_t tests = 0;  ///< triangle tests made
   std::uint64_t skips = 0;  ///< tests the mailbox avoided
+  /// Sub-grids entered (grid2: steps into refined cells, each a DDA set up
+  /// anew); 0 for a structure of one level.
+  std::uint64_t descents = 0;
   /// Per level of a structure of several (grid2; the index is the level):
   /// the cells, tests and references of that level's leaves. Zero for a
   /// structure of one level, whose totals above are its level's.

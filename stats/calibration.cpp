@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string_view>
 
 #include "core/input_error.h"
 #include "core/input_file.h"
@@ -17,11 +18,11 @@ Calibration fit_calibration(std::span<const TimedLoad> measurements) {
   return c;
 }
 
-std::optional<TimeModel> fit_coherent(std::span<const TimedLoad> measurements) {
+std::optional<TimeModel> fit_coherent(std::span<const TimedLoad> measurements, bool nested) {
   bool counted = false;
   for (const TimedLoad& m : measurements) counted = counted || m.load.cold_cells > 0;
   if (!counted) return std::nullopt;
-  TimeModel model = coherent_model(l2_cache_bytes());
+  TimeModel model = coherent_model(l2_cache_bytes(), nested);
   try {
     fit(model, measurements);
   } catch (const std::runtime_error&) {
@@ -47,6 +48,8 @@ nlohmann::ordered_json load_rows(std::span<const TimedLoad> measurements, const 
                                   {"skips_per_ray", m.load.skips / r},
                                   {"hit_fraction", m.load.hits / r},
                                   {"working_set_bytes", m.load.working_set_bytes},
+                                  {"list_bytes", m.load.list_bytes},
+                                  {"descents_per_ray", m.load.descents / r},
                                   {"cold_cells_per_ray", m.load.cold_cells / r},
                                   {"cold_tests_per_ray", m.load.cold_tests / r}};
     if (eq10) row["eq10_ns_per_ray"] = eq10->seconds(m.load) / r * 1e9;
@@ -167,7 +170,7 @@ std::optional<Calibration> load_calibration(const std::filesystem::path& file) {
     const auto read = [&](const char* key, std::optional<TimeModel>& out) {
       const nlohmann::json m = coherent->value(key, nlohmann::json());
       if (m.is_null() && coherent->contains(key)) return;  // calibrate could not fit it
-      TimeModel model = coherent_model(l2_cache_bytes());
+      TimeModel model = coherent_model(l2_cache_bytes(), std::string_view(key) == "grid2");
       if (!from_json(m, model))
         throw InputError(file.string() + ": coherent." + key + " is not a coherent model (constants " +
                          "each a number >= 0, and cache_bytes)");

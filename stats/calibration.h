@@ -19,10 +19,10 @@ namespace kappa {
 
 /// The calibration file's format; files of another one were made by another
 /// Kappa and are refused with a word to run `kappa calibrate` again.
-/// Format 7: the walks it timed look each cell up in the coherence table
-/// (stats/recent_cells.h), as the frames a report predicts do; a format-6
-/// file timed walks without it and would under-predict them.
-inline constexpr int kCalibrationFormat = 7;
+/// Format 8: steps and tests are judged by their own bytes, and grid2's
+/// models have a term per sub-grid entered (stats/time_model.h); a format-7
+/// file's constants were fitted to other features and would mispredict.
+inline constexpr int kCalibrationFormat = 8;
 
 struct Calibration {
   TimeModel eq10 = eq10_model();
@@ -49,8 +49,9 @@ struct Calibration {
 inline const TimeModel& grid_choice_model(const Calibration& c) { return c.coherent ? *c.coherent : c.extended; }
 
 /// The coherent model fitted to `measurements`, or nullopt when none of
-/// them counted coherence (a cold step) or they do not determine it.
-std::optional<TimeModel> fit_coherent(std::span<const TimedLoad> measurements);
+/// them counted coherence (a cold step) or they do not determine it;
+/// `nested`: grid2's measurements, for its model with a term per descent.
+std::optional<TimeModel> fit_coherent(std::span<const TimedLoad> measurements, bool nested = false);
 
 /// Fits eq 10, the extended and the coherent model to the measurements. Throws std::runtime_error (an
 /// internal error: the measurements are Kappa's own) with fewer than 3, a

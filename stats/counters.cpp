@@ -22,6 +22,7 @@ ClassTotals& ClassTotals::operator+=(const ClassTotals& o) {
   predicted_fixed += o.predicted_fixed;
   cold_cells += o.cold_cells;
   cold_tests += o.cold_tests;
+  descents += o.descents;
   return *this;
 }
 

@@ -42,6 +42,8 @@ struct ClassTotals {
   /// walks had not entered, and the triangle tests made in them.
   std::uint64_t cold_cells = 0;
   std::uint64_t cold_tests = 0;
+  /// Sub-grids entered (grid2; WalkCounts::descents).
+  std::uint64_t descents = 0;
 
   double predicted_cells() const { return double(predicted_fixed) / 1024.0; }
 
@@ -118,6 +120,7 @@ class CellCounters {
       t.refs += w.refs;
       t.tests += w.tests;
       t.mailbox_skips += w.skips;
+      t.descents += w.descents;
       for (int k = 0; k < kMaxCellLevels; ++k) {
         t.level_cells[k] += w.level_cells[k];
         t.level_tests[k] += w.level_tests[k];

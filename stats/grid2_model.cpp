@@ -13,13 +13,13 @@ namespace kappa {
 
 std::array<QueryLoad, kRenderClasses> count_segments(const NestedGrid& grid, std::span<const PilotSegment> segments,
                                                      std::optional<double> frame_spp) {
-  const double working_set = double(grid.bytes()) + double(grid.info().N * sizeof(Triangle));
+  const double triangles = double(grid.info().N * sizeof(Triangle));
   return replay_segments(
       segments,
       [&](const PilotSegment& s, auto& recorder) {
         return s.ray_class == kShadow ? grid.any_hit(s.ray, recorder) : grid.closest_hit(s.ray, recorder).has_value();
       },
-      working_set, frame_spp);
+      double(grid.bytes()) + triangles, double(grid.reference_bytes()) + triangles, frame_spp);
 }
 
 Grid2Prediction predict_grid2(const NestedGrid& grid, std::span<const PilotSegment> segments, const ChoiceSettings& settings,

@@ -22,7 +22,7 @@
 namespace kappa {
 
 struct Grid2Model {
-  TimeModel traversal = extended_model(l2_cache_bytes());
+  TimeModel traversal = extended_model(l2_cache_bytes(), /*nested=*/true);
   BuildModel build;
 };
 

@@ -65,12 +65,13 @@ void for_each_tile_run(std::span<const PilotSegment> segments,
 namespace detail {
 
 struct ReplayClassSums {
-  std::uint64_t rays = 0, hits = 0, cells = 0, occupied = 0, tests = 0, skips = 0;
+  std::uint64_t rays = 0, hits = 0, cells = 0, occupied = 0, tests = 0, skips = 0, descents = 0;
   std::uint64_t cold_cells = 0, cold_tests = 0;
   /// Camera rays only: the cold steps and tests of their second walk.
   std::uint64_t repeat_cold_cells = 0, repeat_cold_tests = 0;
   void add(const ReplayClassSums& o) {
     rays += o.rays, hits += o.hits, cells += o.cells, occupied += o.occupied, tests += o.tests, skips += o.skips;
+    descents += o.descents;
     cold_cells += o.cold_cells, cold_tests += o.cold_tests;
     repeat_cold_cells += o.repeat_cold_cells, repeat_cold_tests += o.repeat_cold_tests;
   }
@@ -96,6 +97,7 @@ struct ReplayRecorder {
   void finish(const WalkCounts& c, const WalkSegment&) {
     if (repeat) return;
     sums.cells += c.cells, sums.occupied += c.occupied, sums.tests += c.tests, sums.skips += c.skips;
+    sums.descents += c.descents;
   }
 };
 
@@ -103,13 +105,15 @@ struct ReplayRecorder {
 
 /// The loads of `segments` (a pilot's: grouped by frame tile) walked by
 /// `walk(segment, recorder)`, which returns whether the walk hit, with the
-/// working set `working_set_bytes` and the cold counts of a frame of
+/// working set `working_set_bytes` (of it, `list_bytes` the lists' and
+/// triangles': QueryLoad::list_bytes) and the cold counts of a frame of
 /// `frame_spp` samples per pixel; without `frame_spp` (a model with no cold
 /// terms) no cold step is counted, nor any camera segment walked twice.
 /// Integer sums: the same for any thread count.
 template <class Walk>
 std::array<QueryLoad, kRenderClasses> replay_segments(std::span<const PilotSegment> segments, const Walk& walk,
-                                                      double working_set_bytes, std::optional<double> frame_spp) {
+                                                      double working_set_bytes, double list_bytes,
+                                                      std::optional<double> frame_spp) {
   tbb::enumerable_thread_specific<detail::ReplaySums> per_thread;
   for_each_tile_run(segments, [&](std::size_t begin, std::size_t end) {
     detail::ReplaySums& sums = per_thread.local();
@@ -145,6 +149,8 @@ std::array<QueryLoad, kRenderClasses> replay_segments(std::span<const PilotSegme
     QueryLoad& l = loads[k];
     l = QueryLoad{RenderClass(k), double(a.rays), double(a.cells), double(a.occupied), double(a.tests),
                   double(a.skips), double(a.hits), working_set_bytes};
+    l.list_bytes = list_bytes;
+    l.descents = double(a.descents);
     if (k == kCamera) {
       l.cold_cells = first * double(a.cold_cells) + (1 - first) * double(a.repeat_cold_cells);
       l.cold_tests = first * double(a.cold_tests) + (1 - first) * double(a.repeat_cold_tests);

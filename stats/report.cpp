@@ -71,6 +71,14 @@ nlohmann::ordered_json ray_class_section(const ClassSummary& m, std::optional<do
   return j;
 }
 
+void add_level_figures(nlohmann::ordered_json& section, const ClassTotals& totals,
+                       const std::vector<CellLayout::Level>& levels) {
+  if (levels.empty()) return;  // one level: the grid's
+  section["levels"] = level_sections(totals, levels);
+  section["descents_per_ray"] =
+      totals.rays > 0 ? nlohmann::ordered_json(double(totals.descents) / double(totals.rays)) : nlohmann::ordered_json();
+}
+
 nlohmann::ordered_json level_sections(const ClassTotals& t, const std::vector<CellLayout::Level>& levels) {
   if (levels.size() < 2) return nullptr;
   const double rays = double(t.rays);

@@ -50,4 +50,11 @@ nlohmann::ordered_json ray_class_section(const CastMeasurement& m, std::optional
 /// for a structure of one level.
 nlohmann::ordered_json level_sections(const ClassTotals& totals, const std::vector<CellLayout::Level>& levels);
 
+/// Adds to a ray class's section what a structure that has levels has
+/// (grid2; nothing for the uniform grid): `levels` (level_sections) and
+/// `descents_per_ray`, the sub-grids its rays entered (the model's T_descend
+/// term, stats/time_model.h).
+void add_level_figures(nlohmann::ordered_json& section, const ClassTotals& totals,
+                       const std::vector<CellLayout::Level>& levels);
+
 }  // namespace kappa

@@ -56,21 +56,35 @@ void search_unimodal(std::size_t count, std::size_t start, const std::function<d
     if (!(cost(i) <= least * (1 + tolerance))) break;
 }
 
+namespace {
+
+/// The whole grid's bytes at `theta_tot` references: offsets, occupancy
+/// bits and the reference array, as the grid counts its own.
+double whole_grid_bytes(std::uint64_t cells, double theta_tot) {
+  return double((cells + 1) * sizeof(std::uint32_t) + (cells + 63) / 64 * sizeof(std::uint64_t)) +
+         theta_tot * double(sizeof(TriangleId));
+}
+
+}  // namespace
+
 std::optional<double> cold_steps_spp(const TimeModel& model, double frame_spp) {
   if (model.form != ModelForm::coherent) return std::nullopt;
   return frame_spp;
 }
 
 std::array<QueryLoad, kRenderClasses> count_segments(const UniformGrid& grid, std::span<const PilotSegment> segments,
-                                                     std::optional<double> grid_bytes, std::optional<double> frame_spp) {
-  const double working_set = grid_bytes.value_or(double(grid.bytes())) + double(grid.info().N * sizeof(Triangle));
+                                                     std::optional<double> whole_theta_tot, std::optional<double> frame_spp) {
+  const double triangles = double(grid.info().N * sizeof(Triangle));
+  const double bytes = whole_theta_tot ? whole_grid_bytes(grid.info().resolution.cells(), *whole_theta_tot) : double(grid.bytes());
+  const double references =
+      whole_theta_tot ? *whole_theta_tot * double(sizeof(TriangleId)) : double(grid.reference_bytes());
   return replay_segments(
       segments,
       [&](const PilotSegment& s, auto& recorder) {
         grid.count_closest_walk(s.ray, s.hit ? std::optional<float>(s.t_hit) : std::nullopt, recorder);
         return s.hit;
       },
-      working_set, frame_spp);
+      bytes + triangles, references + triangles, frame_spp);
 }
 
 namespace {
@@ -91,13 +105,6 @@ struct CellMarks {
   void hit() {}
   void finish(const WalkCounts&, const WalkSegment&) {}
 };
-
-/// The whole grid's bytes at `theta_tot` references: offsets, occupancy
-/// bits and the reference array, as the grid counts its own.
-double whole_grid_bytes(std::uint64_t cells, double theta_tot) {
-  return double((cells + 1) * sizeof(std::uint32_t) + (cells + 63) / 64 * sizeof(std::uint64_t)) +
-         theta_tot * double(sizeof(TriangleId));
-}
 
 }  // namespace
 
@@ -134,17 +141,19 @@ Candidate evaluate_candidate(const UniformGrid& grid, std::span<const PilotSegme
   c.res = info.resolution;
   c.lambda = info.N > 0 ? double(info.resolution.cells()) / double(info.N) : 0.0;
   double grid_bytes = double(grid.bytes());
+  std::optional<double> whole_theta_tot;  // a partial grid's: the whole grid's, predicted
   if (info.partial) {
     KAPPA_CHECK(occupancy != nullptr);
     const double theta = occupancy->theta_tot(info.cell_size);
     c.theta_tot = std::isfinite(theta) ? std::uint64_t(std::llround(theta)) : std::numeric_limits<std::uint64_t>::max();
-    grid_bytes = whole_grid_bytes(info.resolution.cells(), double(c.theta_tot));
+    whole_theta_tot = double(c.theta_tot);
+    grid_bytes = whole_grid_bytes(info.resolution.cells(), *whole_theta_tot);
   } else {
     c.theta_tot = info.theta_tot;
   }
   c.bytes = std::uint64_t(std::min(grid_bytes + settings.stats_bytes_per_cell * double(info.resolution.cells()), 1.8e19));
   const auto loads =
-      count_segments(grid, segments, grid_bytes, cold_steps_spp(*settings.traversal, settings.frame_spp));
+      count_segments(grid, segments, whole_theta_tot, cold_steps_spp(*settings.traversal, settings.frame_spp));
   // The model predicts thread-seconds (as calibrate times them); the frame's
   // threads share them, while the build's model gives its wall time.
   for (std::size_t k = 0; k < kRenderClasses; ++k)

@@ -60,11 +60,12 @@ struct ChoiceSettings {
 };
 
 /// Counts `segments` on `grid` (its walks without triangle tests) into one
-/// load per class, hits from the pilot, working set = `grid_bytes` (default:
-/// the grid's own bytes) and the triangles', cold steps those of a frame of
-/// `frame_spp` samples per pixel (stats/pilot_replay.h), none without it.
+/// load per class, hits from the pilot, working set the grid's bytes and the
+/// triangles' (a partial grid: those of the whole grid of `whole_theta_tot`
+/// references), cold steps those of a frame of `frame_spp` samples per
+/// pixel (stats/pilot_replay.h), none without it.
 std::array<QueryLoad, kRenderClasses> count_segments(const UniformGrid& grid, std::span<const PilotSegment> segments,
-                                                     std::optional<double> grid_bytes = std::nullopt,
+                                                     std::optional<double> whole_theta_tot = std::nullopt,
                                                      std::optional<double> frame_spp = 1.0);
 
 /// The frame's samples per pixel when `model` has cold-step terms, else none:

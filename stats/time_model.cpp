@@ -116,7 +116,7 @@ TimeModel eq10_model() {
   return m;
 }
 
-TimeModel extended_model(double cache_bytes) {
+TimeModel extended_model(double cache_bytes, bool nested) {
   TimeModel m;
   m.form = ModelForm::extended;
   m.name = "extended";
@@ -124,17 +124,21 @@ TimeModel extended_model(double cache_bytes) {
   for (const char* t : {"Ts", "Ts_occupied", "Th", "T_hit"}) m.terms.push_back(t);
   for (const char* c : kRenderClassNames) m.terms.push_back(std::string("Ts_miss_") + c);
   for (const char* c : kRenderClassNames) m.terms.push_back(std::string("Th_miss_") + c);
+  m.nested = nested;
+  if (nested) m.terms.push_back("T_descend");
   m.ns.assign(m.terms.size(), 0.0);
   m.cache_bytes = cache_bytes;
   return m;
 }
 
-TimeModel coherent_model(double cache_bytes) {
+TimeModel coherent_model(double cache_bytes, bool nested) {
   TimeModel m = extended_model(cache_bytes);
   m.form = ModelForm::coherent;
   m.name = "coherent";
   m.terms.push_back("Ts_cold");
   m.terms.push_back("Th_cold");
+  m.nested = nested;
+  if (nested) m.terms.push_back("T_descend");
   m.ns.assign(m.terms.size(), 0.0);
   return m;
 }
@@ -143,7 +147,9 @@ std::vector<double> TimeModel::features_per_ray(const QueryLoad& load) const {
   const double r = load.rays > 0 ? load.rays : 1.0;
   const double cells = load.cells / r, occupied = load.occupied / r, tests = load.tests / r;
   if (form == ModelForm::eq10) return {1.0, cells, tests};
-  const double miss = beyond_cache(load.working_set_bytes, cache_bytes);
+  // A step reads the cell records, a test the references and triangles.
+  const double step_miss = beyond_cache(load.working_set_bytes - load.list_bytes, cache_bytes);
+  const double test_miss = beyond_cache(load.list_bytes, cache_bytes);
   std::vector<double> f(terms.size(), 0.0);
   const std::size_t k = load.ray_class;
   f[k] = 1.0;
@@ -151,12 +157,13 @@ std::vector<double> TimeModel::features_per_ray(const QueryLoad& load) const {
   f[kRenderClasses + 1] = occupied;
   f[kRenderClasses + 2] = tests;
   f[kRenderClasses + 3] = load.hits / r;
-  f[kRenderClasses + 4 + k] = cells * miss;
-  f[2 * kRenderClasses + 4 + k] = tests * miss;
+  f[kRenderClasses + 4 + k] = cells * step_miss;
+  f[2 * kRenderClasses + 4 + k] = tests * test_miss;
   if (form == ModelForm::coherent) {
     f[3 * kRenderClasses + 4] = load.cold_cells / r;
     f[3 * kRenderClasses + 5] = load.cold_tests / r;
   }
+  if (nested) f.back() = load.descents / r;
   return f;
 }
 

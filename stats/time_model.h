@@ -14,10 +14,13 @@
 //       and loops over its list);
 //     - per test and per hit;
 //     - per cell step and per test, for each class, a cost times the share of
-//       the working set (the cell arrays and triangles) beyond the L2 cache,
-//       1 - L2 / bytes: the chance that a step or a test waits for memory,
-//       which grows with a class's incoherence (camera rays share cache lines
-//       with their neighbours, deep bounce rays do not).
+//       what the step or the test reads beyond the L2 cache, 1 - L2 / bytes:
+//       the chance that it waits for memory, which grows with a class's
+//       incoherence (camera rays share cache lines with their neighbours,
+//       deep bounce rays do not). A step reads the cell records (offsets,
+//       occupancy bits, grid2's nodes), a test the lists' references and
+//       the triangles: each is judged by its own bytes;
+//     - grid2's alone: per sub-grid entered, whose DDA is set up anew.
 //   coherent: the extended model and two terms more, per cold cell step and
 //     per test in a cold cell (stats/recent_cells.h): what a step costs when
 //     the walks just before it did not enter its cell. Only a render's
@@ -25,12 +28,16 @@
 //     calibration, whose frames are such) have it; the choices' pilots and
 //     kappa sweep predict with the extended model.
 //
-// The form changed once after it was measured on ../shared/scenes (the
-// cost-model issue's note gives both forms' errors): the first (per-kind T0,
-// log2 of the working set on occupied cells and tests) predicted 30 to 120 %
-// too much on the scanned meshes, whose many tests per occupied cell share
-// cache lines; this one was chosen by leave-one-scene-out error over the
-// calibration frames alone.
+// The form changed twice after it was measured on ../shared/scenes (the
+// cost-model and results issues' notes give the forms' errors): the first
+// (per-kind T0, log2 of the working set on occupied cells and tests)
+// predicted 30 to 120 % too much on the scanned meshes, whose many tests per
+// occupied cell share cache lines; the second judged steps and tests by the
+// whole working set, and charged the teapot in the stadium's tests for a
+// 3.7 MB grid of mostly empty cells when its 6,430 triangles fit in L2, and
+// grid2 nothing for entering its sub-grids (its coarse top grids ran 15 to
+// 25 % slower than predicted, its fine ones as much faster). Each form was
+// chosen by leave-one-scene-out error over the calibration frames alone.
 //
 // All are linear in their constants, so all are fitted the same way:
 // least squares of the relative error over the calibration's measurements,
@@ -61,6 +68,11 @@ struct QueryLoad {
   double working_set_bytes = 0;  ///< the accelerator's bytes plus the triangles'
   double cold_cells = 0;  ///< cell steps that were cold (stats/recent_cells.h); 0 where not counted
   double cold_tests = 0;  ///< tests made in cold cells
+  /// Of the working set, what a test reads: the lists' references
+  /// (Accelerator::reference_bytes) and the triangles; the rest is what a
+  /// cell step reads.
+  double list_bytes = 0;
+  double descents = 0;  ///< sub-grids entered (grid2's walks); 0 for one level
 };
 
 /// The forms of model.
@@ -73,6 +85,7 @@ struct TimeModel {
   std::vector<std::string> terms;  ///< the constants' names, in ns
   std::vector<double> ns;          ///< the fitted constants (ns per unit of each feature)
   double cache_bytes = 0;          ///< L2 size the working-set terms are relative to (not eq10)
+  bool nested = false;             ///< grid2's: its last term is per sub-grid entered (T_descend)
   double rms_relative_error = 0;   ///< of the fit over its own measurements
 
   /// The features of `load`, per ray (the fit's rows).
@@ -83,10 +96,11 @@ struct TimeModel {
 
 /// The models, unfitted (all constants 0).
 TimeModel eq10_model();
-/// `cache_bytes`: the L2 cache the working-set terms are relative to.
-TimeModel extended_model(double cache_bytes);
+/// `cache_bytes`: the L2 cache the working-set terms are relative to;
+/// `nested`: grid2's, with a term per sub-grid entered.
+TimeModel extended_model(double cache_bytes, bool nested = false);
 /// The extended model with the coherence terms Ts_cold and Th_cold.
-TimeModel coherent_model(double cache_bytes);
+TimeModel coherent_model(double cache_bytes, bool nested = false);
 
 /// This machine's L2 cache per core, from sysconf (1 MiB if unknown).
 double l2_cache_bytes();

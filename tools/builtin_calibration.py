@@ -2,7 +2,7 @@
 """Rewrites the built-in constants in stats/builtin_calibration.cpp from a
 calibration file (kappa_calibration.json, written by `kappa calibrate`):
 
-    tools/builtin_calibration.py CAL.json [--date YYYY-MM-DD] [--load L]
+    tools/builtin_calibration.py CAL.json --date YYYY-MM-DD --load L [--repeat N]
 
 The file's constants only (its measurements left out), as compact JSON in
 raw-string pieces of 100 characters, so that the built-in constants are
@@ -21,6 +21,7 @@ def main():
     p.add_argument("calibration")
     p.add_argument("--date", required=True, help="the day calibrate ran")
     p.add_argument("--load", required=True, help="the load average uptime showed")
+    p.add_argument("--repeat", type=int, default=3, help="calibrate's --repeat (its default: 3)")
     a = p.parse_args()
     with open(a.calibration) as f:
         cal = json.load(f)
@@ -33,8 +34,8 @@ def main():
     with open(SOURCE) as f:
         src = f.read()
     src, n = re.subn(r'(// Fitted by .*?\n)(// .*?\n)*?constexpr const char\* kBuiltinConstants =\n(    R"\(.*?\)"\n?)+;',
-                     lambda m: (f"// Fitted by `build/kappa calibrate` (its defaults: the Cornell box, the\n"
-                                f"// low-res bunny and the generated soups and meshes) on a project machine on\n"
+                     lambda m: (f"// Fitted by `build/kappa calibrate --repeat {a.repeat}` (its default scenes: the\n"
+                                f"// Cornell box, the low-res bunny and the generated soups and meshes) on a project machine on\n"
                                 f"// {a.date} (load average {a.load}), written in by tools/builtin_calibration.py:\n"
                                 f"// the calibration file's own constants, its measurements left out.\n"
                                 f"constexpr const char* kBuiltinConstants =\n{pieces};"),

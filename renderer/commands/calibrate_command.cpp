@@ -66,6 +66,7 @@ struct Frame {
   std::string structure;  ///< the grid's resolution, or grid2's settings, for the labels
   bool grid2 = false;
   double working_set_bytes = 0;
+  double list_bytes = 0;  ///< of it, the lists' references and the triangles (QueryLoad::list_bytes)
   std::array<ClassTotals, kRenderClasses> totals{};  ///< the same every pass: frames are deterministic
   std::array<std::vector<double>, kRenderClasses> seconds;
 };
@@ -96,6 +97,8 @@ std::vector<TimedLoad> measurements_of(Frame& frame) {
                        double(t.tests),     double(t.mailbox_skips), double(t.hits),          frame.working_set_bytes};
     m.load.cold_cells = double(t.cold_cells);
     m.load.cold_tests = double(t.cold_tests);
+    m.load.list_bytes = frame.list_bytes;
+    m.load.descents = double(t.descents);
     m.seconds = s[s.size() / 2];
     m.label = frame.scene->name + " " + frame.structure + " " + kRenderClassNames[k];
     out.push_back(std::move(m));
@@ -204,6 +207,7 @@ int run_calibrate(const CalibrateOptions& options) {
       builds.push_back({double(info.N), double(info.theta_tot), double(info.resolution.cells()), grid->build_s(),
                         scene.name + " " + f.structure});
       f.working_set_bytes = double(grid->bytes()) + double(scene.triangles.size() * sizeof(Triangle));
+      f.list_bytes = double(grid->reference_bytes()) + double(scene.triangles.size() * sizeof(Triangle));
       f.grid = std::move(grid);
       frames.push_back(std::move(f));
     }
@@ -231,6 +235,7 @@ int run_calibrate(const CalibrateOptions& options) {
       grid2_builds.push_back({double(info.N), double(info.theta_tot), double(info.leaves), grid2->build_s(),
                               scene.name + " " + f.structure});
       f.working_set_bytes = double(grid2->bytes()) + double(scene.triangles.size() * sizeof(Triangle));
+      f.list_bytes = double(grid2->reference_bytes()) + double(scene.triangles.size() * sizeof(Triangle));
       f.grid = std::move(grid2);
       frames.push_back(std::move(f));
     }
@@ -288,7 +293,7 @@ int run_calibrate(const CalibrateOptions& options) {
   fit(cal.build, builds, threads);
   fit(cal.naive, naive);
   fit(cal.grid2.traversal, grid2_measurements);
-  cal.grid2_coherent = fit_coherent(grid2_measurements);
+  cal.grid2_coherent = fit_coherent(grid2_measurements, /*nested=*/true);
   fit(cal.grid2.build, grid2_builds, threads);
   cal.machine = machine_name() + ", " + std::to_string(threads) + " walking";
   cal.clock = QueryClock::get().source();
@@ -305,9 +310,13 @@ int run_calibrate(const CalibrateOptions& options) {
       std::printf("coherent (%s): not determined by these measurements\n", name);
       continue;
     }
+    // Its terms beyond the extended model's: the cold ones, and grid2's per descent.
     const TimeModel& m = **model;
-    std::printf("coherent (%s): Ts_cold %.2f ns, Th_cold %.2f ns (rms relative error %.1f %%)\n", name,
-                m.ns[m.ns.size() - 2], m.ns.back(), 100 * m.rms_relative_error);
+    std::printf("coherent (%s):", name);
+    const std::size_t first = extended_model(m.cache_bytes).terms.size();
+    for (std::size_t i = first; i < m.terms.size(); ++i)
+      std::printf("%s %s %.2f ns", i == first ? "" : ",", m.terms[i].c_str(), m.ns[i]);
+    std::printf(" (rms relative error %.1f %%)\n", 100 * m.rms_relative_error);
   }
   std::printf("grid build (%d threads): %.2f ns per triangle, %.2f ns per reference, %.3f ns per cell (rms relative "
               "error %.1f %% over %zu builds)\n",
@@ -316,9 +325,10 @@ int run_calibrate(const CalibrateOptions& options) {
   std::printf("naive: T0 %.2f ns, Th %.3f ns, Th_occluded %.3f ns per triangle (rms relative error %.1f %% over %zu "
               "measurements)\n",
               cal.naive.ns[0], cal.naive.ns[1], cal.naive.ns[2], 100 * cal.naive.rms_relative_error, naive.size());
-  std::printf("grid2: traversal (rms relative error %.1f %% over %zu measurements), build %.2f ns per triangle, %.2f "
-              "ns per reference, %.3f ns per leaf (rms relative error %.1f %% over %zu builds)\n",
-              100 * cal.grid2.traversal.rms_relative_error, grid2_measurements.size(), cal.grid2.build.ns[0],
+  std::printf("grid2: traversal T_descend %.2f ns per sub-grid entered (rms relative error %.1f %% over %zu "
+              "measurements), build %.2f ns per triangle, %.2f ns per reference, %.3f ns per leaf (rms relative error "
+              "%.1f %% over %zu builds)\n",
+              cal.grid2.traversal.ns.back(), 100 * cal.grid2.traversal.rms_relative_error, grid2_measurements.size(), cal.grid2.build.ns[0],
               cal.grid2.build.ns[1], cal.grid2.build.ns[2], 100 * cal.grid2.build.rms_relative_error,
               grid2_builds.size());
   std::printf("machine probe: %.2f ms before the grids' passes, %.2f ms after\n", 1e3 * probe_before, 1e3 * probe_after);

@@ -95,7 +95,7 @@ int run_cast(const CastOptions& options) {
         p_tot_predicted = p_tot_lines_eq22(hi - lo, *cell_size, double(cells->cell_count()));
       report[std::string(a.name())] = accel_section(a, scene.triangles);
       nlohmann::ordered_json section = ray_class_section(m, p_tot_predicted);
-      if (const auto levels = cells->levels(); !levels.empty()) section["levels"] = level_sections(m.counters.totals, levels);
+      add_level_figures(section, m.counters.totals, cells->levels());
       return section;
     } else {
       // Accelerators without cells: only what applies (counts, hits, time).

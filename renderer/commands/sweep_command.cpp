@@ -180,8 +180,9 @@ int run_sweep(const SweepOptions& options) {
       const ClassTotals& t = c.counters.totals;
       const double rays = double(sets[s].rays.size());
       const double working_set = double(p.grid->bytes()) + double(N * sizeof(Triangle));
-      const QueryLoad load{model_class(sets[s].kind), double(t.rays),          double(t.cells), double(t.occupied_cells),
-                           double(t.tests),           double(t.mailbox_skips), double(t.hits),  working_set};
+      QueryLoad load{model_class(sets[s].kind), double(t.rays),          double(t.cells), double(t.occupied_cells),
+                     double(t.tests),           double(t.mailbox_skips), double(t.hits),  working_set};
+      load.list_bytes = double(p.grid->reference_bytes()) + double(N * sizeof(Triangle));
       const double measured = median_of(p.sets[s].seconds);
       const double eq10 = calibration->eq10.seconds(load) / rays, ext = calibration->extended.seconds(load) / rays;
       const auto& times = p.sets[s].seconds;

@@ -61,6 +61,7 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
                                                                                      : nullptr;
   const TimeModel* coherent = coherent_model && *coherent_model ? &**coherent_model : nullptr;
   const double working_set = double(accel.bytes()) + double(triangles * sizeof(Triangle));
+  const double list_bytes = double(accel.reference_bytes()) + double(triangles * sizeof(Triangle));
 
   double measured = 0, eq10 = 0, extended = 0, coherent_s = 0;
   std::uint64_t capped = 0;
@@ -69,7 +70,7 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
     const ClassTotals& t = rc.classes[k].totals;
     const QueryLoad load{RenderClass(k),      double(t.rays),          double(t.cells), double(t.occupied_cells),
                          double(t.tests), double(t.mailbox_skips), double(t.hits),  working_set,
-                         double(t.cold_cells), double(t.cold_tests)};
+                         double(t.cold_cells), double(t.cold_tests), list_bytes, double(t.descents)};
     const double m = clock.seconds(rc.ticks[k]);
     measured += m;
     capped += rc.capped[k];

@@ -80,8 +80,7 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
       rays[kRenderClassNames[k]] = ray_class_section(
           summary(c.totals, c.per_cell_queries(), visits, theta, clock.seconds(rc.ticks[k]), uniform),
           std::nullopt);
-      if (const auto levels = cells->levels(); !levels.empty())
-        rays[kRenderClassNames[k]]["levels"] = level_sections(c.totals, levels);
+      add_level_figures(rays[kRenderClassNames[k]], c.totals, cells->levels());
       all += c.totals;
       all_per_cell_rays += c.per_cell_queries();
       all_seconds += clock.seconds(rc.ticks[k]);
@@ -92,7 +91,7 @@ nlohmann::ordered_json render_report(const Scene& scene, const Accelerator& acce
     rays["shadow"]["occluder_cache"] = {{"enabled", result.occluder_cache},
                                         {"tests", rc.occluder_cache_tests},
                                         {"hits", rc.occluder_cache_hits}};
-    if (const auto levels = cells->levels(); !levels.empty()) rays["all"]["levels"] = level_sections(all, levels);
+    add_level_figures(rays["all"], all, cells->levels());
     // Bounce rays by the lobe that sampled them. A scene whose surfaces are
     // all Lambertian counts no lobes: its bounces are all diffuse.
     nlohmann::ordered_json by_lobe;

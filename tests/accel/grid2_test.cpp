@@ -254,6 +254,52 @@ TEST(Grid2, MemoryLimitIsAClearError) {
   }
 }
 
+TEST(Grid2, TheWalkCountsEachSubGridItEnters) {
+  // A soup whose top cells each hold a few dozen triangles: most are refined
+  // once and their sub-grids' cells hold few, so the leaves are of levels 0
+  // and 1 and a sub-grid is known by its top cell. A walk enters one each
+  // time it steps from a leaf outside a top cell's sub-grid into one inside.
+  const auto tris = test::random_soup(3000, 41);
+  const NestedGrid grid = make_grid2(tris, 1.0 / 32, 1);
+  const GridInfo& top = grid.info().top;
+  const CellBox bounds = grid.cells()->bounds();
+  std::uint64_t descents = 0, level1_leaves = 0;
+  for (const Ray& ray : uniform_lines(bounds.lo, bounds.hi, 300, 17)) {
+    LeafRecorder rec;
+    grid.walk_whole(ray, rec);
+    std::uint64_t entered = 0;
+    std::int64_t in_top_cell = -1;  // the top cell whose sub-grid the walk is in, or -1
+    for (const auto& v : rec.cells) {
+      ASSERT_LE(v.level, 1) << "the case needs leaves of levels 0 and 1 only";
+      if (v.level == 0) {
+        in_top_cell = -1;
+        continue;
+      }
+      ++level1_leaves;
+      std::int64_t index = 0, stride = 1;
+      for (int a = 0; a < 3; ++a) {
+        const double centre = 0.5 * (v.box.lo[a] + v.box.hi[a]);
+        index += stride * std::int64_t(std::floor((centre - top.lo[a]) / top.cell_size[a]));
+        stride *= top.resolution[a];
+      }
+      if (index != in_top_cell) ++entered, in_top_cell = index;
+    }
+    EXPECT_EQ(rec.counts.descents, entered);
+    descents += rec.counts.descents;
+  }
+  EXPECT_GT(descents, 300u);  // most lines cross several refined top cells
+  EXPECT_GT(level1_leaves, 2 * descents);
+  // The uniform grid has no sub-grids.
+  GridOptions options;
+  options.resolution = GridResolution{20, 20, 20};
+  const UniformGrid uniform(tris, options);
+  for (const Ray& ray : uniform_lines(bounds.lo, bounds.hi, 20, 3)) {
+    LeafRecorder rec;
+    uniform.count_closest_walk(ray, std::nullopt, rec);
+    EXPECT_EQ(rec.counts.descents, 0u);
+  }
+}
+
 TEST(Grid2, IsVisitedAsItsOwnTypeAndReportsItsLevels) {
   static_assert(CellWalker<NestedGrid>);
   const auto tris = test::random_soup(300, 29);

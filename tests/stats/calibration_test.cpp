@@ -55,6 +55,7 @@ TEST(Calibration, TheExtendedModelRecoversEveryTermOfAClosedFormCase) {
             TimedLoad m;
             m.load = QueryLoad{RenderClass(c), 1000, 1000 * cells, 1000 * cells * occupied_share, 1000 * tests,
                                1000.0 * (1 + (i % 5)), 1000.0 * (i % 3) / 2.0, working_set};
+            m.load.list_bytes = working_set * (i % 2 ? 0.3 : 0.8);  // the steps' and the tests' bytes vary apart
             m.seconds = truth.seconds(m.load);
             samples.push_back(m);
             ++i;
@@ -63,8 +64,70 @@ TEST(Calibration, TheExtendedModelRecoversEveryTermOfAClosedFormCase) {
   fit(m, samples);
   for (std::size_t k = 0; k < m.ns.size(); ++k) EXPECT_NEAR(m.ns[k], truth.ns[k], 1e-6) << m.terms[k];
   EXPECT_NEAR(m.rms_relative_error, 0.0, 1e-9);
-  const QueryLoad unseen{kBounce2, 500, 500 * 12.0, 500 * 2.0, 500 * 9.0, 500 * 2.0, 400, 40 * cache};
+  QueryLoad unseen{kBounce2, 500, 500 * 12.0, 500 * 2.0, 500 * 9.0, 500 * 2.0, 400, 40 * cache};
+  unseen.list_bytes = 25 * cache;
   EXPECT_NEAR(m.seconds(unseen) / truth.seconds(unseen), 1.0, 1e-9);
+}
+
+TEST(Calibration, AStepIsJudgedByTheCellsBytesAndATestByTheListsAndTriangles) {
+  // 4 MiB of which the lists and triangles are 0.5 MiB (the teapot in the
+  // stadium's case: a large grid of mostly empty cells, triangles that fit
+  // in L2): a step's share beyond the cache is 1 - 1 / 3.5, a test's 0; with
+  // lists of 3.5 MiB, a step's is 0 (0.5 MiB of cells) and a test's 1 - 1 / 3.5.
+  const double cache = 1 << 20;
+  const TimeModel m = extended_model(cache);
+  const auto index = [&](const std::string& term) {
+    return std::size_t(std::find(m.terms.begin(), m.terms.end(), term) - m.terms.begin());
+  };
+  QueryLoad load{kShadow, 10, 10 * 8.0, 10 * 2.0, 10 * 30.0, 0, 5, 4 * cache};
+  load.list_bytes = 0.5 * cache;
+  std::vector<double> f = m.features_per_ray(load);
+  EXPECT_NEAR(f[index("Ts_miss_shadow")], 8.0 * (1 - 1 / 3.5), 1e-12);
+  EXPECT_EQ(f[index("Th_miss_shadow")], 0.0);
+  EXPECT_EQ(f[index("Ts_miss_camera")], 0.0);  // another class's terms stay 0
+  load.list_bytes = 3.5 * cache;
+  f = m.features_per_ray(load);
+  EXPECT_EQ(f[index("Ts_miss_shadow")], 0.0);
+  EXPECT_NEAR(f[index("Th_miss_shadow")], 30.0 * (1 - 1 / 3.5), 1e-12);
+  EXPECT_EQ(m.terms.back(), "Th_miss_bounce3+");  // the grid's model has no term per descent
+}
+
+TEST(Calibration, Grid2sModelRecoversItsCostPerSubGridEntered) {
+  // grid2's models end with T_descend, a cost per sub-grid entered: fitted
+  // to times that include one, both forms return it and every other term.
+  const double cache = 1 << 20;
+  for (const bool coherent : {false, true}) {
+    TimeModel truth = coherent ? coherent_model(cache, true) : extended_model(cache, true);
+    ASSERT_EQ(truth.terms.back(), "T_descend");
+    ASSERT_EQ(truth.terms.size(), (coherent ? coherent_model(cache) : extended_model(cache)).terms.size() + 1);
+    for (std::size_t k = 0; k < truth.ns.size(); ++k) truth.ns[k] = 1.0 + double((3 * k) % 7);
+    truth.ns.back() = 47.5;
+    std::vector<TimedLoad> samples;
+    int i = 0;
+    for (std::size_t c = 0; c < kRenderClasses; ++c)
+      for (double cells : {3.0, 30.0})
+        for (double occupied_share : {0.1, 0.6})
+          for (double tests : {2.0, 50.0})
+            for (double working_set : {0.5 * cache, 4 * cache, 300 * cache})
+              for (double descents : {0.0, 2.5}) {
+                TimedLoad m;
+                m.load = QueryLoad{RenderClass(c), 1000, 1000 * cells, 1000 * cells * occupied_share, 1000 * tests,
+                                   1000.0 * (1 + (i % 5)), 1000.0 * (i % 3) / 2.0, working_set,
+                                   1000 * cells * (i % 2 ? 0.05 : 0.7), 1000 * tests * (i % 3 ? 0.5 : 0.1)};
+                m.load.list_bytes = working_set * (i % 2 ? 0.3 : 0.8);
+                m.load.descents = 1000 * descents * (i % 4 ? 1.0 : 0.4);
+                m.seconds = truth.seconds(m.load);
+                samples.push_back(m);
+                ++i;
+              }
+    TimeModel fitted = coherent ? *fit_coherent(samples, true) : extended_model(cache, true);
+    if (!coherent) fit(fitted, samples);
+    for (std::size_t k = 0; k < truth.ns.size(); ++k) EXPECT_NEAR(fitted.ns[k], truth.ns[k], 1e-6) << fitted.terms[k];
+    // The same loads timed without the descents' cost: the term comes out 0.
+    for (TimedLoad& m : samples) m.seconds -= 47.5e-9 * m.load.descents;
+    fit(fitted, samples);
+    EXPECT_NEAR(fitted.ns.back(), 0.0, 1e-6);
+  }
 }
 
 TEST(Calibration, TheCoherentModelRecoversItsColdStepTerms) {
@@ -88,6 +151,7 @@ TEST(Calibration, TheCoherentModelRecoversItsColdStepTerms) {
               m.load = QueryLoad{RenderClass(c), 1000, 1000 * cells, 1000 * cells * occupied_share, 1000 * tests,
                                  1000.0 * (1 + (i % 5)), 1000.0 * (i % 3) / 2.0, working_set,
                                  1000 * cells * cold_share, 1000 * tests * cold_share * (i % 2 ? 0.5 : 1.0)};
+              m.load.list_bytes = working_set * (i % 3 ? 0.3 : 0.8);  // the steps' and the tests' bytes vary apart
               m.seconds = truth.seconds(m.load);
               samples.push_back(m);
               ++i;
@@ -171,12 +235,15 @@ TEST(Calibration, FileRoundTripAndErrors) {
   EXPECT_EQ(coherent_back->coherent->ns, coherent.coherent->ns);
   EXPECT_EQ(coherent_back->coherent->form, ModelForm::coherent);
   EXPECT_FALSE(coherent_back->grid2_coherent);  // written as null
-  coherent.grid2_coherent = coherent.coherent;
-  coherent.grid2_coherent->ns.back() = 42;
+  coherent.grid2_coherent = coherent_model(1 << 20, /*nested=*/true);
+  for (std::size_t k = 0; k < coherent.grid2_coherent->ns.size(); ++k) coherent.grid2_coherent->ns[k] = 0.5 + double(k);
+  coherent.grid2_coherent->ns.back() = 42;  // T_descend: grid2's alone
   test::write_file(tmp / "coherent2.json", to_json(coherent).dump());
   const auto grid2_back = load_calibration(tmp / "coherent2.json");
   ASSERT_TRUE(grid2_back && grid2_back->grid2_coherent);
   EXPECT_EQ(grid2_back->grid2_coherent->ns, coherent.grid2_coherent->ns);
+  EXPECT_EQ(grid2_back->grid2_coherent->terms.back(), "T_descend");
+  EXPECT_EQ(grid2_back->grid2.traversal.terms.back(), "T_descend");
   nlohmann::json null_coherent = to_json(coherent);
   null_coherent["coherent"] = nullptr;  // as absent
   test::write_file(tmp / "null_coherent.json", null_coherent.dump());

@@ -213,13 +213,14 @@ TEST(ResolutionChoice, ACountingGridCountsTheSegmentsAsTheWholeGridDoesWithFewer
     EXPECT_LT(partial->info().theta_tot, whole.info().theta_tot);
     // Its counts are the whole grid's, with the whole grid's working set.
     const auto a = count_segments(whole, segments);
-    const auto b = count_segments(*partial, segments, double(whole.bytes()));
+    const auto b = count_segments(*partial, segments, double(whole.info().theta_tot));
     for (std::size_t k = 0; k < kRenderClasses; ++k) {
       EXPECT_EQ(a[k].cells, b[k].cells);
       EXPECT_EQ(a[k].occupied, b[k].occupied);
       EXPECT_EQ(a[k].tests, b[k].tests);
       EXPECT_EQ(a[k].skips, b[k].skips);
       EXPECT_EQ(a[k].working_set_bytes, b[k].working_set_bytes);
+      EXPECT_EQ(a[k].list_bytes, b[k].list_bytes);
     }
     // Its candidate's Theta_tot is eq 19's for the whole grid; the whole grid's candidate, its own.
     const FixedModels models;

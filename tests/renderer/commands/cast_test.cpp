@@ -112,7 +112,7 @@ TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
   // depend on a file another run may have left beside the binary.
   // Extended constants: T0 per class 11, 12, ..., 15; Ts 1, Ts_occupied 19, Th 7, T_hit 23; the
   // per-class miss terms 2 + class (cells) and 3 + class (tests).
-  // grid2's own: Ts 5 and T0 per class 31, 32, ..., 35, the rest the grid's.
+  // grid2's own: Ts 5 and T0 per class 31, 32, ..., 35, T_descend 13, the rest the grid's.
   const char* classes[] = {"camera", "shadow", "bounce1", "bounce2", "bounce3+"};
   const auto extended_constants = [&](int t0, int ts) {
     std::string constants;
@@ -124,11 +124,13 @@ TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
     return R"({"cache_bytes": 1024, "constants": {)" + constants + "}}";
   };
   const std::string build = R"({"threads": 1, "constants": {"per_triangle_ns": 50, "per_reference_ns": 20, "per_cell_ns": 2}})";
-  test::write_file(tmp / "cal.json", R"({"format": 7, "machine": "test", "clock": "tsc", "samples": 0,
+  std::string grid2_constants = extended_constants(31, 5);
+  grid2_constants.insert(grid2_constants.size() - 2, R"(, "T_descend_ns": 13)");
+  test::write_file(tmp / "cal.json", R"({"format": 8, "machine": "test", "clock": "tsc", "samples": 0,
     "eq10": {"constants": {"T0_ns": 20, "Ts_ns": 3, "Th_ns": 7}},
     "naive": {"constants": {"T0_ns": 30, "Th_ns": 2, "Th_occluded_ns": 1}},
     "build": )" + build + R"(, "extended": )" + extended_constants(11, 1) + R"(,
-    "grid2": {"traversal": )" + extended_constants(31, 5) + R"(, "build": )" + build + "}}");
+    "grid2": {"traversal": )" + grid2_constants + R"(, "build": )" + build + "}}");
   const auto r = test::run_kappa({"render", cornell(), "--accel", "grid", "--spp", "2", "--width", "24", "--height",
                                   "24", "--out", (tmp / "x.exr").string(), "--report", (tmp / "x.json").string(),
                                   "--calibration", (tmp / "cal.json").string()});
@@ -142,8 +144,13 @@ TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
   const auto& cost = j.at("cost");
   ASSERT_TRUE(cost.is_object());
   EXPECT_EQ(cost.at("eq10").at("T0_ns").get<double>(), 20.0);
-  const double working_set = j.at("grid").at("bytes").get<double>() + j.at("grid").at("N").get<double>() * 36;
-  const double miss = 1 - 1024 / working_set;
+  // A step's share beyond the 1024-byte cache is its cells', a test's its lists' and triangles'.
+  const auto beyond = [](double bytes) { return bytes > 1024 ? 1 - 1024 / bytes : 0.0; };
+  const auto shares = [&](const nlohmann::json& section) {
+    const double references = section.at("theta_tot").get<double>() * 4, triangles = section.at("N").get<double>() * 36;
+    return std::pair{beyond(section.at("bytes").get<double>() - references), beyond(references + triangles)};
+  };
+  const auto [step_miss, test_miss] = shares(j.at("grid"));
   double eq10 = 0, extended = 0;
   for (const char* cls : classes) {
     const auto& c = j.at("rays").at(cls);
@@ -157,7 +164,7 @@ TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
     const double e10 = n * (20 + 3 * cells + 7 * tests) * 1e-9;
     const double ext = n * 1e-9 *
                        (11 + k + cells + 19 * occupied + 7 * tests + 23 * c.at("hit_fraction").get<double>() +
-                        (2 + k) * cells * miss + (3 + k) * tests * miss);
+                        (2 + k) * cells * step_miss + (3 + k) * tests * test_miss);
     EXPECT_NEAR(mine.at("eq10_s").get<double>(), e10, 1e-9 * e10) << cls;
     EXPECT_NEAR(mine.at("extended_s").get<double>(), ext, 1e-9 * ext) << cls;
     eq10 += e10, extended += ext;
@@ -175,7 +182,8 @@ TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
   const auto g = nlohmann::json::parse(test::read_file(tmp / "g.json"));
   const auto& cost2 = g.at("cost");
   EXPECT_TRUE(cost2.at("eq10").is_null());
-  const double miss2 = 1 - 1024 / (g.at("grid2").at("bytes").get<double>() + g.at("grid2").at("N").get<double>() * 36);
+  const auto [step_miss2, test_miss2] = shares(g.at("grid2"));
+  double descents = 0;
   double extended2 = 0;
   for (int k = 0; k < 5; ++k) {
     const auto& c = g.at("rays").at(classes[k]);
@@ -184,11 +192,14 @@ TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
     const double cells = c.at("cells_per_ray").get<double>(), tests = c.at("tests_per_ray").get<double>();
     const double ext = n * 1e-9 *
                        (31 + k + 5 * cells + 19 * c.at("occupied_cells_per_ray").get<double>() + 7 * tests +
-                        23 * c.at("hit_fraction").get<double>() + (2 + k) * cells * miss2 + (3 + k) * tests * miss2);
+                        23 * c.at("hit_fraction").get<double>() + (2 + k) * cells * step_miss2 +
+                        (3 + k) * tests * test_miss2 + 13 * c.at("descents_per_ray").get<double>());
+    descents += n * c.at("descents_per_ray").get<double>();
     EXPECT_NEAR(cost2.at("per_class").at(classes[k]).at("extended_s").get<double>(), ext, 1e-9 * ext) << classes[k];
     extended2 += ext;
   }
   EXPECT_GT(extended2, 0.0);
+  EXPECT_GT(descents, 0.0);  // the Cornell box's grid2 has sub-grids its rays enter
   EXPECT_NEAR(cost2.at("extended").at("predicted_s").get<double>(), extended2, 1e-9 * extended2);
   EXPECT_EQ(cost2.at("extended").at("constants").at("T0_camera_ns").get<double>(), 31.0);
 }
