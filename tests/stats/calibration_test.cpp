@@ -38,6 +38,38 @@ TEST(Calibration, FitRecoversExactConstants) {
   EXPECT_NEAR(m.seconds(eq10_load(0, 0, 0, 3, 4, 10).load), 10 * (30 + 15 + 32) * 1e-9, 1e-15);
 }
 
+/// Loads that vary every feature of the extended model apart (each class,
+/// cells, occupied share, tests, skips, hits, the working set and the share
+/// of it the lists hold), each twice: with few and with many cold steps when
+/// `cold`, without and with sub-grids entered when `descents`; timed by
+/// `truth`.
+std::vector<TimedLoad> varied_loads(const TimeModel& truth, bool cold, bool descents) {
+  const double cache = truth.cache_bytes;
+  std::vector<TimedLoad> samples;
+  int i = 0;
+  for (std::size_t c = 0; c < kRenderClasses; ++c)
+    for (double cells : {3.0, 30.0})
+      for (double occupied_share : {0.1, 0.6})
+        for (double tests : {2.0, 50.0})
+          for (double working_set : {0.5 * cache, 4 * cache, 300 * cache})
+            for (const bool more : {false, true}) {
+              TimedLoad m;
+              m.load = QueryLoad{RenderClass(c), 1000, 1000 * cells, 1000 * cells * occupied_share, 1000 * tests,
+                                 1000.0 * (1 + (i % 5)), 1000.0 * (i % 3) / 2.0, working_set};
+              m.load.list_bytes = working_set * (i % 3 ? 0.3 : 0.8);  // the steps' and the tests' bytes vary apart
+              if (cold) {
+                const double cold_share = more ? 0.7 : 0.05;
+                m.load.cold_cells = 1000 * cells * cold_share;
+                m.load.cold_tests = 1000 * tests * cold_share * (i % 2 ? 0.5 : 1.0);
+              }
+              if (descents) m.load.descents = more ? 1000 * 2.5 * (i % 4 ? 1.0 : 0.4) : 0.0;
+              m.seconds = truth.seconds(m.load);
+              samples.push_back(m);
+              ++i;
+            }
+  return samples;
+}
+
 TEST(Calibration, TheExtendedModelRecoversEveryTermOfAClosedFormCase) {
   // Times made from known values of all its terms, over loads that vary each
   // feature apart: the fit returns each term, and the prediction of a load
@@ -45,21 +77,7 @@ TEST(Calibration, TheExtendedModelRecoversEveryTermOfAClosedFormCase) {
   const double cache = 1 << 20;
   TimeModel truth = extended_model(cache);
   for (std::size_t k = 0; k < truth.ns.size(); ++k) truth.ns[k] = 1.0 + double((7 * k) % 11);
-  std::vector<TimedLoad> samples;
-  int i = 0;
-  for (std::size_t c = 0; c < kRenderClasses; ++c)
-    for (double cells : {3.0, 30.0})
-      for (double occupied_share : {0.1, 0.6})
-        for (double tests : {2.0, 50.0})
-          for (double working_set : {0.5 * cache, 4 * cache, 300 * cache}) {
-            TimedLoad m;
-            m.load = QueryLoad{RenderClass(c), 1000, 1000 * cells, 1000 * cells * occupied_share, 1000 * tests,
-                               1000.0 * (1 + (i % 5)), 1000.0 * (i % 3) / 2.0, working_set};
-            m.load.list_bytes = working_set * (i % 2 ? 0.3 : 0.8);  // the steps' and the tests' bytes vary apart
-            m.seconds = truth.seconds(m.load);
-            samples.push_back(m);
-            ++i;
-          }
+  const std::vector<TimedLoad> samples = varied_loads(truth, false, false);
   TimeModel m = extended_model(cache);
   fit(m, samples);
   for (std::size_t k = 0; k < m.ns.size(); ++k) EXPECT_NEAR(m.ns[k], truth.ns[k], 1e-6) << m.terms[k];
@@ -102,24 +120,7 @@ TEST(Calibration, Grid2sModelRecoversItsCostPerSubGridEntered) {
     ASSERT_EQ(truth.terms.size(), (coherent ? coherent_model(cache) : extended_model(cache)).terms.size() + 1);
     for (std::size_t k = 0; k < truth.ns.size(); ++k) truth.ns[k] = 1.0 + double((3 * k) % 7);
     truth.ns.back() = 47.5;
-    std::vector<TimedLoad> samples;
-    int i = 0;
-    for (std::size_t c = 0; c < kRenderClasses; ++c)
-      for (double cells : {3.0, 30.0})
-        for (double occupied_share : {0.1, 0.6})
-          for (double tests : {2.0, 50.0})
-            for (double working_set : {0.5 * cache, 4 * cache, 300 * cache})
-              for (double descents : {0.0, 2.5}) {
-                TimedLoad m;
-                m.load = QueryLoad{RenderClass(c), 1000, 1000 * cells, 1000 * cells * occupied_share, 1000 * tests,
-                                   1000.0 * (1 + (i % 5)), 1000.0 * (i % 3) / 2.0, working_set,
-                                   1000 * cells * (i % 2 ? 0.05 : 0.7), 1000 * tests * (i % 3 ? 0.5 : 0.1)};
-                m.load.list_bytes = working_set * (i % 2 ? 0.3 : 0.8);
-                m.load.descents = 1000 * descents * (i % 4 ? 1.0 : 0.4);
-                m.seconds = truth.seconds(m.load);
-                samples.push_back(m);
-                ++i;
-              }
+    std::vector<TimedLoad> samples = varied_loads(truth, coherent, true);
     TimeModel fitted = coherent ? *fit_coherent(samples, true) : extended_model(cache, true);
     if (!coherent) fit(fitted, samples);
     for (std::size_t k = 0; k < truth.ns.size(); ++k) EXPECT_NEAR(fitted.ns[k], truth.ns[k], 1e-6) << fitted.terms[k];
@@ -139,23 +140,7 @@ TEST(Calibration, TheCoherentModelRecoversItsColdStepTerms) {
   for (std::size_t k = 0; k < truth.ns.size(); ++k) truth.ns[k] = 1.0 + double((5 * k) % 7);
   truth.ns[truth.ns.size() - 2] = 3.5;  // Ts_cold
   truth.ns.back() = 9.25;               // Th_cold
-  std::vector<TimedLoad> samples;
-  int i = 0;
-  for (std::size_t c = 0; c < kRenderClasses; ++c)
-    for (double cells : {3.0, 30.0})
-      for (double occupied_share : {0.1, 0.6})
-        for (double tests : {2.0, 50.0})
-          for (double working_set : {0.5 * cache, 4 * cache, 300 * cache})
-            for (double cold_share : {0.05, 0.7}) {
-              TimedLoad m;
-              m.load = QueryLoad{RenderClass(c), 1000, 1000 * cells, 1000 * cells * occupied_share, 1000 * tests,
-                                 1000.0 * (1 + (i % 5)), 1000.0 * (i % 3) / 2.0, working_set,
-                                 1000 * cells * cold_share, 1000 * tests * cold_share * (i % 2 ? 0.5 : 1.0)};
-              m.load.list_bytes = working_set * (i % 3 ? 0.3 : 0.8);  // the steps' and the tests' bytes vary apart
-              m.seconds = truth.seconds(m.load);
-              samples.push_back(m);
-              ++i;
-            }
+  std::vector<TimedLoad> samples = varied_loads(truth, true, false);
   const std::optional<TimeModel> fitted = fit_coherent(samples);
   ASSERT_TRUE(fitted);
   EXPECT_EQ(fitted->terms.back(), "Th_cold");
