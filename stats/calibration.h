@@ -22,7 +22,9 @@ namespace kappa {
 /// Format 8: steps and tests are judged by their own bytes, and grid2's
 /// models have a term per sub-grid entered (stats/time_model.h); a format-7
 /// file's constants were fitted to other features and would mispredict.
-inline constexpr int kCalibrationFormat = 8;
+/// Format 9: the coherent models have no term per cold test (a format-8
+/// file's coherent constants were fitted with one).
+inline constexpr int kCalibrationFormat = 9;
 
 struct Calibration {
   TimeModel eq10 = eq10_model();

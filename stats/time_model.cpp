@@ -136,7 +136,6 @@ TimeModel coherent_model(double cache_bytes, bool nested) {
   m.form = ModelForm::coherent;
   m.name = "coherent";
   m.terms.push_back("Ts_cold");
-  m.terms.push_back("Th_cold");
   m.nested = nested;
   if (nested) m.terms.push_back("T_descend");
   m.ns.assign(m.terms.size(), 0.0);
@@ -159,10 +158,7 @@ std::vector<double> TimeModel::features_per_ray(const QueryLoad& load) const {
   f[kRenderClasses + 3] = load.hits / r;
   f[kRenderClasses + 4 + k] = cells * step_miss;
   f[2 * kRenderClasses + 4 + k] = tests * test_miss;
-  if (form == ModelForm::coherent) {
-    f[3 * kRenderClasses + 4] = load.cold_cells / r;
-    f[3 * kRenderClasses + 5] = load.cold_tests / r;
-  }
+  if (form == ModelForm::coherent) f[3 * kRenderClasses + 4] = load.cold_cells / r;
   if (nested) f.back() = load.descents / r;
   return f;
 }

@@ -21,9 +21,14 @@
 //       occupancy bits, grid2's nodes), a test the lists' references and
 //       the triangles: each is judged by its own bytes;
 //     - grid2's alone: per sub-grid entered, whose DDA is set up anew.
-//   coherent: the extended model and two terms more, per cold cell step and
-//     per test in a cold cell (stats/recent_cells.h): what a step costs when
-//     the walks just before it did not enter its cell. Only a render's
+//   coherent: the extended model and one term more, per cold cell step
+//     (stats/recent_cells.h): what a step costs when the walks just before it
+//     did not enter its cell. A term per test in a cold cell was dropped: the
+//     calibration frames do not tell it from the per-test and miss terms
+//     (grid2's came out 28 to 55 ns over five calibrations of one build, 3 to
+//     7 times a warm test's cost), and with it the verdict of grid against
+//     grid2 on the shared scenes swung with the calibration (5 to 11 of 22
+//     rows meeting the ratio target; 12 to 17 without it). Only a render's
 //     counting frames count coherence, so only their reports (and the
 //     calibration, whose frames are such) have it; the choices' pilots and
 //     kappa sweep predict with the extended model.
@@ -70,7 +75,7 @@ struct QueryLoad {
   double hits = 0;    ///< rays that hit (any-hit: that were occluded)
   double working_set_bytes = 0;  ///< the accelerator's bytes plus the triangles'
   double cold_cells = 0;  ///< cell steps that were cold (stats/recent_cells.h); 0 where not counted
-  double cold_tests = 0;  ///< tests made in cold cells
+  double cold_tests = 0;  ///< tests made in cold cells (counted and reported; no model term: time_model.h)
   /// Of the working set, what a test reads: the lists' references
   /// (Accelerator::reference_bytes) and the triangles; the rest is what a
   /// cell step reads.
@@ -102,7 +107,7 @@ TimeModel eq10_model();
 /// `cache_bytes`: the L2 cache the working-set terms are relative to;
 /// `nested`: grid2's, with a term per sub-grid entered.
 TimeModel extended_model(double cache_bytes, bool nested = false);
-/// The extended model with the coherence terms Ts_cold and Th_cold.
+/// The extended model with the coherence term Ts_cold, per cold cell step.
 TimeModel coherent_model(double cache_bytes, bool nested = false);
 
 /// This machine's L2 cache per core, from sysconf (1 MiB if unknown).

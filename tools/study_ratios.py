@@ -76,8 +76,8 @@ def ratios_section(page, data_dir, meta, record):
               "the pair's; a row gives the median and the worst |error| over its pairs (classes of at least %s "
               "rays). The extended model is eq 10 with per-class constants, occupied cells, hits and cache misses "
               "(a step's by the bytes of the cells, a test's by those of the lists and triangles), and for grid2 a "
-              "cost per sub-grid entered; the coherent model adds a cost per cold cell step and per test in a "
-              "cold cell (a cell the tile's recent walks did not enter: `stats/recent_cells.h`). The "
+              "cost per sub-grid entered; the coherent model adds a cost per cold cell step (a "
+              "cell the tile's recent walks did not enter: `stats/recent_cells.h`). The "
               "calibration: `%s`." %
               (command, runs, ", ".join(num(d) for d in densities), num(cmr.MIN_RAYS),
                os.path.basename(calibration) if calibration else NONE))

@@ -113,6 +113,10 @@ nlohmann::ordered_json cost_section(const Accelerator& accel, std::size_t triang
                                      : nlohmann::ordered_json();
   j["clock"] = clock.source();
   j["measured_s"] = measured;
+  // The loads' bytes (QueryLoad), so that a reader can predict the frame
+  // again under another calibration's constants from the report alone.
+  j["working_set_bytes"] = working_set;
+  j["list_bytes"] = list_bytes;
   j["capped_queries"] = capped;
   j["machine_probe"] = machine_probe_section(result, calibration);
   j["eq10"] = nullptr;

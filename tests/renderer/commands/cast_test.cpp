@@ -126,7 +126,7 @@ TEST(RenderReport, WrittenBesideTheImageWithEveryClass) {
   const std::string build = R"({"threads": 1, "constants": {"per_triangle_ns": 50, "per_reference_ns": 20, "per_cell_ns": 2}})";
   std::string grid2_constants = extended_constants(31, 5);
   grid2_constants.insert(grid2_constants.size() - 2, R"(, "T_descend_ns": 13)");
-  test::write_file(tmp / "cal.json", R"({"format": 8, "machine": "test", "clock": "tsc", "samples": 0,
+  test::write_file(tmp / "cal.json", R"({"format": 9, "machine": "test", "clock": "tsc", "samples": 0,
     "eq10": {"constants": {"T0_ns": 20, "Ts_ns": 3, "Th_ns": 7}},
     "naive": {"constants": {"T0_ns": 30, "Th_ns": 2, "Th_occluded_ns": 1}},
     "build": )" + build + R"(, "extended": )" + extended_constants(11, 1) + R"(,
